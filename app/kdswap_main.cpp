@@ -1,0 +1,36 @@
+// kdswap: command-line entry. Parses the subcommand, runs it, turns errors into one line + exit 2.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "core/util/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "kdswap: data-distributed parallel volume rendering with binary-swap compositing\n"
+      "(Ma, Painter, Hansen & Krogh 1993), on P virtual nodes in one process.\n"};
+  app.require_subcommand(1);
+  kdswap::addRenderCommand(app);
+  app.footer("Run 'kdswap SUBCOMMAND --help' for the options of each subcommand.");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "kdswap: %s\n", e.what());
+    return 2;
+  } catch (const kdswap::CommandExit& e) {
+    return e.code;
+  } catch (const kdswap::Error& e) {
+    std::fprintf(stderr, "kdswap: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kdswap: unexpected error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,156 @@
+// Shared scene options: parsing and validation into a Scene.
+#include "app/scene_options.h"
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "core/transfer/presets.h"
+#include "core/util/error.h"
+#include "core/volume/datasets/dataset.h"
+#include "core/volume/reader.h"
+
+namespace kdswap {
+namespace {
+
+std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& what) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, separator)) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || item.empty() || !std::isfinite(v))
+      throw Error(what + " \"" + text + "\": \"" + item + "\" is not a number");
+    values.push_back(v);
+  }
+  return values;
+}
+
+}  // namespace
+
+void parseImageSize(const std::string& text, int& width, int& height) {
+  std::vector<double> v;
+  try {
+    v = parseNumbers(text, 'x', "--size");
+  } catch (const Error&) {
+    throw Error("--size \"" + text + "\": expected WxH, e.g. 512x512");
+  }
+  if (v.size() == 1) v.push_back(v[0]);
+  if (v.size() != 2) throw Error("--size \"" + text + "\": expected WxH, e.g. 512x512");
+  for (double d : v)
+    if (d < 1 || d > 16384 || d != std::floor(d))
+      throw Error("--size \"" + text + "\": each side must be a whole number from 1 to 16384");
+  width = int(v[0]);
+  height = int(v[1]);
+}
+
+void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
+  cmd->add_option("--dataset", o.dataset,
+                  "Built-in procedural data set NAME[:N|:WxHxD]: phantom (Shepp-Logan head), vessels, "
+                  "turbulence. Default phantom:128");
+  cmd->add_option("--volume", o.volume,
+                  "Volume file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
+                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)");
+  cmd->add_option("--raw-dims", o.rawDims, "Raw files: dimensions WxHxD");
+  cmd->add_option("--raw-type", o.rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
+  cmd->add_option("--raw-endian", o.rawEndian, "Raw files: little or big")->capture_default_str();
+  cmd->add_option("--raw-spacing", o.rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
+  cmd->add_option("--size", o.size, "Image size WxH (1..16384 each)")->capture_default_str();
+  cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees")->capture_default_str();
+  cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii")->capture_default_str();
+  cmd->add_option("--fov", o.fov, "Vertical field of view, degrees (orthographic: sets the frame size)")
+      ->capture_default_str();
+  cmd->add_option("--projection", o.projection, "perspective or orthographic")->capture_default_str();
+  cmd->add_option("--up", o.up, "Volume axis pointing up on screen: +x -x +y -y +z -z")->capture_default_str();
+  cmd->add_option("--step", o.step, "Sample spacing in voxels (global lattice; opacity is corrected for it)")
+      ->capture_default_str();
+  cmd->add_option("--tf", o.tf, "Transfer function: a preset name (see assets/presets) or a JSON file "
+                                "(kdswap or ParaView colour map). Default: the data set's preset");
+  cmd->add_option("--shading", o.shading, "Phong shading from precomputed gradients: on or off")->capture_default_str();
+  cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold (1 disables)")->capture_default_str();
+  cmd->add_option("--range", o.range, "Scalar range MIN,MAX mapped to [0,1] (default: the data's range)");
+}
+
+void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
+  cmd->add_option("--nodes,-n", o.nodes, "Virtual nodes P (1..4096)")->capture_default_str();
+  cmd->add_option("--composite", o.composite, "Compositing strategy: binary-swap, binary-tree, sequential")
+      ->capture_default_str();
+  cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
+  cmd->add_flag("--sparse", o.sparse, "Send only the bounding rectangle of non-empty pixels");
+  cmd->add_option("--threads", o.threads, "Worker threads (0 = every core)")->capture_default_str();
+}
+
+Scene buildScene(const SceneOptions& o) {
+  Scene scene;
+  if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
+  if (!o.volume.empty()) {
+    RawLayout layout;
+    if (!o.rawDims.empty()) {
+      const auto d = parseNumbers(o.rawDims, 'x', "--raw-dims");
+      if (d.size() != 3) throw Error("--raw-dims \"" + o.rawDims + "\": expected WxHxD");
+      for (double v : d)
+        if (v < 1 || v > 1e6 || v != std::floor(v)) throw Error("--raw-dims \"" + o.rawDims + "\": sizes must be whole numbers >= 1");
+      layout.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
+    }
+    if (!o.rawType.empty()) layout.type = o.rawType;
+    if (o.rawEndian != "little" && o.rawEndian != "big") throw Error("--raw-endian \"" + o.rawEndian + "\": expected little or big");
+    layout.bigEndian = o.rawEndian == "big";
+    if (!o.rawSpacing.empty()) {
+      const auto s = parseNumbers(o.rawSpacing, ',', "--raw-spacing");
+      if (s.size() != 3) throw Error("--raw-spacing \"" + o.rawSpacing + "\": expected SX,SY,SZ");
+      layout.spacing = glm::vec3(float(s[0]), float(s[1]), float(s[2]));
+    }
+    scene.source = openVolumeFile(o.volume, layout);
+  } else {
+    scene.source = openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset);
+  }
+  const VolumeInfo& info = scene.source->info();
+
+  FrameRequest& r = scene.request;
+  parseImageSize(o.size, r.width, r.height);
+  const auto angles = parseNumbers(o.view, ',', "--view");
+  if (angles.size() != 2) throw Error("--view \"" + o.view + "\": expected AZIMUTH,ELEVATION in degrees");
+  r.view.azimuthDeg = float(angles[0]);
+  r.view.elevationDeg = float(angles[1]);
+  if (!(o.distance > 0.0f && o.distance < 1000.0f)) throw Error("--distance must be between 0 and 1000 radii");
+  r.view.distance = o.distance;
+  if (!(o.fov >= 1.0f && o.fov <= 170.0f)) throw Error("--fov must be between 1 and 170 degrees");
+  r.view.fovDeg = o.fov;
+  r.view.projection = parseProjection(o.projection);
+  r.view.up = parseUpAxis(o.up);
+  if (!(o.step >= 0.01f && o.step <= 16.0f)) throw Error("--step must be between 0.01 and 16 voxels");
+  r.settings.stepVoxels = o.step;
+  if (o.shading != "on" && o.shading != "off") throw Error("--shading \"" + o.shading + "\": expected on or off");
+  r.settings.shading = o.shading == "on";
+  if (!(o.ert > 0.0f && o.ert <= 1.0f)) throw Error("--ert must be in (0, 1]");
+  r.settings.earlyTermination = o.ert;
+  if (!o.range.empty()) {
+    const auto range = parseNumbers(o.range, ',', "--range");
+    if (range.size() != 2 || !(range[1] > range[0])) throw Error("--range \"" + o.range + "\": expected MIN,MAX with MIN < MAX");
+    r.settings.valueRange = glm::vec2(float(range[0]), float(range[1]));
+  }
+  const std::string tf = !o.tf.empty() ? o.tf : (!info.preset.empty() ? info.preset : "grayscale");
+  r.transfer = loadTransferFunction(tf);
+
+  ClusterOptions& c = scene.cluster;
+  c.nodes = o.nodes;
+  if (o.nodes < 1 || o.nodes > kMaxNodes) throw Error("--nodes " + std::to_string(o.nodes) + ": must be from 1 to 4096");
+  c.strategy = o.composite;
+  c.partition = parsePartition(o.partition);
+  c.composite.sparse = o.sparse;
+  if (o.threads < 0 || o.threads > 1024) throw Error("--threads must be from 0 to 1024");
+  c.threads = o.threads;
+  if (c.partition == PartitionKind::Slab) {
+    const Camera camera(r.view, glm::vec3(0.0f), info.worldMax(), r.width, r.height);
+    c.slabAxis = slabAxisFor(camera);
+  }
+  return scene;
+}
+
+}  // namespace kdswap

@@ -1,0 +1,51 @@
+// Command-line options shared by every subcommand that renders: the volume, the view, the
+// transfer function and render settings, and the virtual cluster. Parsed once into a Scene.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "core/cluster/frame_request.h"
+#include "core/cluster/virtual_cluster.h"
+#include "core/volume/volume_source.h"
+
+namespace kdswap {
+
+struct SceneOptions {
+  std::string dataset;
+  std::string volume;
+  std::string rawDims, rawType, rawEndian = "little", rawSpacing;
+  std::string size = "512x512";
+  std::string view = "30,15";
+  float distance = 3.0f, fov = 35.0f;
+  std::string projection = "perspective", up = "+z";
+  float step = 0.5f;
+  std::string tf;
+  std::string shading = "on";
+  float ert = 0.99f;
+  std::string range;
+  int nodes = 1;
+  std::string composite = "binary-swap";
+  std::string partition = "kd";
+  bool sparse = false;
+  int threads = 0;
+};
+
+struct Scene {
+  std::unique_ptr<VolumeSource> source;
+  FrameRequest request;
+  ClusterOptions cluster;
+};
+
+//! Adds the volume, view and render options to `cmd`.
+void addSceneOptions(CLI::App* cmd, SceneOptions& options);
+//! Adds --nodes, --composite, --partition, --sparse, --threads.
+void addClusterOptions(CLI::App* cmd, SceneOptions& options);
+//! Opens the volume and validates every option. Throws kdswap::Error with one clear line.
+Scene buildScene(const SceneOptions& options);
+//! "WxH" -> (w, h), each 1..16384. Throws kdswap::Error.
+void parseImageSize(const std::string& text, int& width, int& height);
+
+}  // namespace kdswap

@@ -1,0 +1,41 @@
+// Camera: one ray per pixel centre for a View, an image size and a volume's world box.
+// World space is voxel index times spacing; the volume's data domain is [0, (dims-1)*spacing].
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "core/camera/view.h"
+#include "core/image/rect.h"
+
+namespace kdswap {
+
+struct Ray {
+  glm::vec3 origin;     //!< world space; sample k sits at origin + direction * (k * step)
+  glm::vec3 direction;  //!< unit length, world space
+};
+
+class Camera {
+ public:
+  Camera(const View& view, const glm::vec3& worldMin, const glm::vec3& worldMax, int width, int height);
+
+  //! The ray through the centre of pixel (px, py); y grows downward.
+  Ray ray(int px, int py) const;
+  //! Conservative pixel rectangle (clipped to the frame) covering the projection of a world box.
+  Rect projectBox(const glm::vec3& lo, const glm::vec3& hi) const;
+
+  bool orthographic() const { return orthographic_; }
+  const glm::vec3& eye() const { return eye_; }
+  const glm::vec3& forward() const { return forward_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Rect frame() const { return Rect{0, 0, width_, height_}; }
+
+ private:
+  int width_, height_;
+  bool orthographic_;
+  glm::vec3 eye_, forward_, right_, up_;
+  float halfHeight_;  //!< tan(fov/2) for perspective; world half-height of the frame for orthographic
+  float aspect_;
+};
+
+}  // namespace kdswap

@@ -1,0 +1,30 @@
+// View: the user's orbit-camera parameters, independent of image size and volume.
+#pragma once
+
+#include <string>
+
+#include <glm/vec2.hpp>
+
+namespace kdswap {
+
+enum class Projection { Perspective, Orthographic };
+
+//! Which volume axis points up on screen ("+z" by default; CT stacks often want "-z").
+enum class UpAxis { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
+
+struct View {
+  float azimuthDeg = 30.0f;    //!< orbit angle around the up axis; 0 looks from the "front" (-y side)
+  float elevationDeg = 15.0f;  //!< angle above the equator, in (-90, 90)
+  float distance = 3.0f;       //!< eye distance from the centre, in bounding-sphere radii
+  float fovDeg = 35.0f;        //!< vertical field of view; orthographic uses it to set the frame size
+  Projection projection = Projection::Perspective;
+  UpAxis up = UpAxis::PlusZ;
+  glm::vec2 pan{0.0f};         //!< screen-space shift of the orbit centre, in bounding-sphere radii
+};
+
+Projection parseProjection(const std::string& text);  //!< "perspective" | "orthographic"; throws Error
+UpAxis parseUpAxis(const std::string& text);          //!< "+x" "-x" "+y" "-y" "+z" "-z"; throws Error
+std::string toString(Projection p);
+std::string toString(UpAxis u);
+
+}  // namespace kdswap

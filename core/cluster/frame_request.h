@@ -1,0 +1,40 @@
+// FrameRequest: what the host broadcasts to every node for one frame (view, image size,
+// transfer function, render settings). FramePlan: what a node derives from it before rendering.
+#pragma once
+
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "core/camera/camera.h"
+#include "core/camera/view.h"
+#include "core/composite/strategy.h"
+#include "core/partition/kd_tree.h"
+#include "core/render/render_settings.h"
+#include "core/transfer/transfer_function.h"
+
+namespace kdswap {
+
+struct FrameRequest {
+  View view;
+  int width = 512, height = 512;
+  TransferFunction transfer;
+  RenderSettings settings;
+  bool recordPhases = false;  //!< keep every node's image after each phase (Figure 6)
+};
+
+//! Immutable per-frame data every node computes identically from the request and the partition.
+struct FramePlan {
+  FramePlan(const FrameRequest& request, const KdTree& tree, const glm::vec3& spacing, glm::vec2 valueRange,
+            const Strategy& strategy);
+
+  const FrameRequest& request;
+  Camera camera;
+  TransferTable table;
+  VisibilityOrder order;
+  glm::vec2 valueRange;
+  const Strategy& strategy;
+  Rect frame() const { return camera.frame(); }
+};
+
+}  // namespace kdswap

@@ -1,0 +1,169 @@
+// Virtual cluster: runs the node program as P oneTBB tasks; a watchdog ends stalled frames.
+#include "core/cluster/virtual_cluster.h"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include <oneapi/tbb/task_group.h>
+
+#include "core/cluster/host.h"
+#include "core/render/reference_render.h"
+#include "core/util/clock.h"
+#include "core/util/error.h"
+#include "core/util/memory.h"
+
+namespace kdswap {
+namespace {
+
+// Aborts the frame when no message moves and no node finishes for `limit` seconds, naming who
+// waits on whom: every wait can end.
+class StallWatchdog {
+ public:
+  StallWatchdog(InprocNetwork& network, const std::atomic<int>& finished, double limit)
+      : network_(network), finished_(finished), limit_(limit), thread_([this] { watch(); }) {}
+  ~StallWatchdog() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  void watch() {
+    std::uint64_t lastDelivered = network_.delivered();
+    int lastFinished = finished_.load();
+    double lastProgress = nowSeconds();
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!done_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(50));
+      if (done_) break;
+      const std::uint64_t delivered = network_.delivered();
+      const int finished = finished_.load();
+      if (delivered != lastDelivered || finished != lastFinished) {
+        lastDelivered = delivered, lastFinished = finished, lastProgress = nowSeconds();
+      } else if (nowSeconds() - lastProgress > limit_ && !network_.aborted()) {
+        network_.abort("stalled: no message for " + std::to_string(int(limit_)) + " s; " + network_.describeWaits());
+      }
+    }
+  }
+
+  InprocNetwork& network_;
+  const std::atomic<int>& finished_;
+  double limit_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+int validatedNodes(int nodes) {
+  if (nodes < 1 || nodes > kMaxNodes)
+    throw Error("nodes " + std::to_string(nodes) + ": must be between 1 and " + std::to_string(kMaxNodes));
+  return nodes;
+}
+
+}  // namespace
+
+VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions& options)
+    : options_(options),
+      info_(source.info()),
+      tree_(KdTree::build(info_.dims, validatedNodes(options.nodes), options.partition, options.slabAxis)),
+      strategy_(createStrategy(options.strategy, options.composite)),
+      arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
+      network_(options.nodes),
+      nodes_(std::size_t(options.nodes)) {
+  const double start = nowSeconds();
+  InprocCommunicator host(network_, Communicator::kHost);
+  runOnNodes(
+      [&](int rank, Communicator& comm) {
+        receiveBrick(nodes_[std::size_t(rank)], comm);
+      },
+      true, [&] { distributeBricks(source, tree_, host); });
+  distributeSeconds_ = nowSeconds() - start;
+}
+
+VirtualCluster::~VirtualCluster() = default;
+
+template <typename Body>
+void VirtualCluster::runOnNodes(Body&& body, bool withHostTask, const std::function<void()>& hostTask) {
+  network_.reset();
+  std::atomic<int> finished{0};
+  {
+    StallWatchdog watchdog(network_, finished, options_.stallSeconds);
+    arena_.execute([&] {
+      tbb::task_group group;
+      if (withHostTask)
+        group.run([&] {
+          try {
+            hostTask();
+          } catch (const std::exception& e) {
+            network_.abort(std::string("host: ") + e.what());
+          }
+          finished.fetch_add(1);
+        });
+      for (int r = 0; r < options_.nodes; ++r)
+        group.run([&, r] {
+          InprocCommunicator comm(network_, r);
+          try {
+            body(r, comm);
+          } catch (const std::exception& e) {
+            // The first failure names the node; the others then fail with "aborted" and lose.
+            network_.abort("node " + std::to_string(r) + ": " + e.what());
+          }
+          finished.fetch_add(1);
+        });
+      group.wait();
+    });
+  }
+  if (network_.aborted()) throw Error(network_.abortReason());
+}
+
+FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
+  if (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384)
+    throw Error("image size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                ": each side must be between 1 and 16384");
+  const double start = nowSeconds();
+  const FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
+
+  FrameResult result;
+  if (request.recordPhases) {
+    result.phases = std::make_shared<PhaseRecord>();
+    result.phases->frame = plan.frame();
+    result.phases->cells.resize(std::size_t(options_.nodes));
+  }
+  std::vector<NodeReport> reports(std::size_t(options_.nodes));
+  runOnNodes(
+      [&](int rank, Communicator& comm) {
+        reports[std::size_t(rank)] = runNodeFrame(nodes_[std::size_t(rank)], comm, plan, result.phases.get());
+      },
+      false, {});
+
+  // Gather: every tile is in the host's mailbox by now.
+  const double gatherStart = nowSeconds();
+  std::vector<Message> tiles(std::size_t(options_.nodes));
+  for (Message& tile : tiles)
+    if (!network_.mailbox(Communicator::kHost).tryTake(Mailbox::kAnySource, kTileTag, tile))
+      throw Error("gather: a node finished without sending its tile");
+  result.image = assembleTiles(tiles, plan.frame(), &result.tiles);
+  const double end = nowSeconds();
+
+  FrameStats& s = result.stats;
+  s.nodes = options_.nodes;
+  s.width = request.width;
+  s.height = request.height;
+  s.strategy = std::string(strategy_->name());
+  s.partition = toString(options_.partition);
+  s.wallSeconds = end - start;
+  s.gatherSeconds = end - gatherStart;
+  s.distributeSeconds = distributeSeconds_;
+  s.peakRssBytes = peakResidentBytes();
+  s.perNode = std::move(reports);
+  return result;
+}
+
+}  // namespace kdswap

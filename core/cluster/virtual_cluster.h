@@ -1,0 +1,74 @@
+// VirtualCluster: P virtual nodes in one process (any P from 1 to 4096). Each node is a oneTBB
+// task running the node program over its own private NodeState; nodes talk only through the
+// in-process network's mailboxes. Waiting nodes suspend their tasks, so P far above the core
+// count neither deadlocks nor oversubscribes threads.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <oneapi/tbb/task_arena.h>
+
+#include "core/cluster/frame_request.h"
+#include "core/cluster/node_program.h"
+#include "core/cluster/phase_record.h"
+#include "core/comm/inproc_network.h"
+#include "core/composite/registry.h"
+#include "core/metrics/frame_stats.h"
+#include "core/partition/kd_tree.h"
+#include "core/volume/volume_source.h"
+
+namespace kdswap {
+
+inline constexpr int kMaxNodes = 4096;
+
+struct ClusterOptions {
+  int nodes = 8;
+  PartitionKind partition = PartitionKind::KdTree;
+  int slabAxis = 2;                      //!< for slab partitions: the axis the slabs are stacked along
+  std::string strategy = "binary-swap";
+  CompositeOptions composite;
+  int threads = 0;                       //!< worker threads; 0 = every core
+  double stallSeconds = 60.0;            //!< a frame with no message for this long is aborted
+};
+
+struct FrameResult {
+  Image image;                  //!< the finished frame (premultiplied RGBA)
+  FrameStats stats;
+  std::vector<Rect> tiles;      //!< tiles[node]: the region each node finished
+  std::shared_ptr<PhaseRecord> phases;  //!< when the request asked for it
+};
+
+class VirtualCluster {
+ public:
+  //! Partitions the volume and distributes the bricks (the host reads one brick at a time).
+  //! Throws kdswap::Error for a bad option.
+  VirtualCluster(const VolumeSource& source, const ClusterOptions& options);
+  ~VirtualCluster();
+
+  //! Renders one frame on all nodes. Throws kdswap::Error naming the node if a node fails or the
+  //! frame stalls; the cluster stays usable for the next frame.
+  FrameResult renderFrame(const FrameRequest& request);
+
+  const KdTree& tree() const { return tree_; }
+  const VolumeInfo& info() const { return info_; }
+  const ClusterOptions& options() const { return options_; }
+  double distributeSeconds() const { return distributeSeconds_; }
+
+ private:
+  template <typename Body>
+  void runOnNodes(Body&& body, bool withHostTask, const std::function<void()>& hostTask);
+
+  ClusterOptions options_;
+  VolumeInfo info_;
+  KdTree tree_;
+  std::unique_ptr<Strategy> strategy_;
+  tbb::task_arena arena_;
+  InprocNetwork network_;
+  std::vector<NodeState> nodes_;  //!< nodes_[r] is touched only by node r's task
+  double distributeSeconds_ = 0;
+};
+
+}  // namespace kdswap

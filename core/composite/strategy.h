@@ -1,0 +1,52 @@
+// Strategy: one way of combining the nodes' partial images into a finished frame. Each strategy
+// is one file and one line in registry.cpp; it sees only the Communicator, never threads or MPI,
+// and reports each phase to the PhaseObserver (that is how the GUI shows the paper's Figure 6).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/comm/communicator.h"
+#include "core/image/image.h"
+#include "core/partition/kd_tree.h"
+
+namespace kdswap {
+
+//! What a node holds when compositing ends: it alone is responsible for the pixels of `region`
+//! (maybe empty); `image` covers a part of `region` (pixels outside it are transparent).
+struct Tile {
+  Rect region;
+  Image image;
+};
+
+//! Told about every compositing phase on every node, so rows of the phase grid line up: a node
+//! idle in a phase still reports it (empty region).
+class PhaseObserver {
+ public:
+  virtual ~PhaseObserver() = default;
+  //! `partner` is the node exchanged with in this phase, or -1.
+  virtual void beginPhase(std::string_view label, int partner) = 0;
+  //! The node's region and image after the phase, and the pixels it composited during it.
+  virtual void endPhase(const Rect& region, const Image& image, std::int64_t pixelsComposited) = 0;
+};
+
+struct CompositeOptions {
+  bool sparse = false;       //!< send only the bounding rectangle of non-empty pixels
+  std::vector<int> radices;  //!< per-round group sizes, for strategies that take them
+};
+
+class Strategy {
+ public:
+  virtual ~Strategy() = default;
+  virtual std::string_view name() const = 0;  //!< as typed on the command line
+  //! Called on every node with its partial image (any rect inside `frame`). `order` ranks the
+  //! nodes front to back for this view. Returns the tile this node finished (maybe empty); the
+  //! returned tiles of all nodes partition `frame`.
+  virtual Tile compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+                       PhaseObserver& phases) const = 0;
+};
+
+}  // namespace kdswap

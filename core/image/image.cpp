@@ -1,0 +1,91 @@
+// Image storage and the "over" operator on premultiplied colour (Porter & Duff 1984).
+#include "core/image/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/util/check.h"
+
+namespace kdswap {
+
+Image::Image(const Rect& rect) : rect_(rect.empty() ? Rect{} : rect), values_(std::size_t(rect_.area()) * 4, 0.0f) {}
+
+Image::Image(const Rect& rect, std::vector<float> values)
+    : rect_(rect.empty() ? Rect{} : rect), values_(std::move(values)) {
+  KDSWAP_CHECK_EQ(values_.size(), std::size_t(rect_.area()) * 4);
+}
+
+Image Image::crop(const Rect& r) const {
+  Image out(rect_.intersect(r));
+  const Rect& o = out.rect_;
+  for (int y = o.y; y < o.bottom(); ++y)
+    std::memcpy(&out.at(o.x, y), &at(o.x, y), sizeof(Rgba) * std::size_t(o.w));
+  return out;
+}
+
+Image Image::extendedTo(const Rect& r) const {
+  KDSWAP_CHECK(r.contains(rect_));
+  Image out(r);
+  for (int y = rect_.y; y < rect_.bottom(); ++y)
+    std::memcpy(&out.at(rect_.x, y), &at(rect_.x, y), sizeof(Rgba) * std::size_t(rect_.w));
+  return out;
+}
+
+Rect Image::opaqueBounds() const {
+  int x0 = rect_.right(), y0 = rect_.bottom(), x1 = rect_.x - 1, y1 = rect_.y - 1;
+  for (int y = rect_.y; y < rect_.bottom(); ++y) {
+    const Rgba* row = &at(rect_.x, y);
+    for (int i = 0; i < rect_.w; ++i) {
+      if (row[i].a > 0.0f) {
+        x0 = std::min(x0, rect_.x + i);
+        x1 = std::max(x1, rect_.x + i);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+      }
+    }
+  }
+  if (x1 < x0) return Rect{};
+  return Rect{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+std::int64_t compositeInto(Image& dst, const Image& other, bool otherInFront) {
+  const Rect& r = other.rect();
+  if (r.empty()) return 0;
+  KDSWAP_CHECK(dst.rect().contains(r));
+  for (int y = r.y; y < r.bottom(); ++y) {
+    Rgba* d = &dst.at(r.x, y);
+    const Rgba* s = &other.at(r.x, y);
+    if (otherInFront) {
+      for (int i = 0; i < r.w; ++i) d[i] = over(s[i], d[i]);
+    } else {
+      for (int i = 0; i < r.w; ++i) d[i] = over(d[i], s[i]);
+    }
+  }
+  return r.area();
+}
+
+Image assemble(const Rect& frame, const std::vector<Image>& pieces) {
+  Image out(frame);
+  for (const Image& piece : pieces) {
+    const Rect r = piece.rect().intersect(frame);
+    for (int y = r.y; y < r.bottom(); ++y)
+      std::memcpy(&out.at(r.x, y), &piece.at(r.x, y), sizeof(Rgba) * std::size_t(r.w));
+  }
+  return out;
+}
+
+float maxAbsDifference(const Image& a, const Image& b, const Rect& frame) {
+  float worst = 0.0f;
+  for (int y = frame.y; y < frame.bottom(); ++y) {
+    for (int x = frame.x; x < frame.right(); ++x) {
+      const Rgba p = a.sample(x, y), q = b.sample(x, y);
+      const float d = std::max({std::fabs(p.r - q.r), std::fabs(p.g - q.g), std::fabs(p.b - q.b),
+                                std::fabs(p.a - q.a)});
+      if (!(d <= worst)) worst = d;  // NaN propagates as a failure
+    }
+  }
+  return worst;
+}
+
+}  // namespace kdswap

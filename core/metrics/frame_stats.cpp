@@ -1,0 +1,126 @@
+// Frame statistics: aggregation, JSON and the printed table.
+#include "core/metrics/frame_stats.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "core/util/memory.h"
+
+namespace kdswap {
+
+double FrameStats::renderMax() const {
+  double m = 0;
+  for (const NodeReport& n : perNode) m = std::max(m, n.renderSeconds);
+  return m;
+}
+
+double FrameStats::compositeMax() const {
+  double m = 0;
+  for (const NodeReport& n : perNode) m = std::max(m, n.compositeSeconds());
+  return m;
+}
+
+int FrameStats::phaseCount() const {
+  int c = 0;
+  for (const NodeReport& n : perNode) c = std::max(c, int(n.phases.size()));
+  return c;
+}
+
+double FrameStats::phaseComputeMax(int phase) const {
+  double m = 0;
+  for (const NodeReport& n : perNode)
+    if (phase < int(n.phases.size())) m = std::max(m, n.phases[std::size_t(phase)].computeSeconds);
+  return m;
+}
+
+double FrameStats::modelledParallelSeconds() const {
+  double t = renderMax();
+  for (int p = 0; p < phaseCount(); ++p) t += phaseComputeMax(p);
+  return t;
+}
+
+std::uint64_t FrameStats::samples() const {
+  std::uint64_t s = 0;
+  for (const NodeReport& n : perNode) s += n.samples;
+  return s;
+}
+
+std::uint64_t FrameStats::rays() const {
+  std::uint64_t s = 0;
+  for (const NodeReport& n : perNode) s += n.rays;
+  return s;
+}
+
+std::uint64_t FrameStats::bytesSent() const {
+  std::uint64_t s = 0;
+  for (const NodeReport& n : perNode) s += n.bytesSent();
+  return s;
+}
+
+nlohmann::json FrameStats::toJson() const {
+  nlohmann::json j;
+  j["nodes"] = nodes;
+  j["image"] = {width, height};
+  j["strategy"] = strategy;
+  j["partition"] = partition;
+  j["wall_s"] = wallSeconds;
+  j["render_s_max"] = renderMax();
+  j["composite_s_max"] = compositeMax();
+  j["modelled_parallel_s"] = modelledParallelSeconds();
+  j["distribute_s"] = distributeSeconds;
+  j["gather_s"] = gatherSeconds;
+  j["samples"] = samples();
+  j["rays"] = rays();
+  j["samples_per_s"] = wallSeconds > 0 ? double(samples()) / wallSeconds : 0.0;
+  j["bytes_sent"] = bytesSent();
+  j["peak_rss_bytes"] = peakRssBytes;
+  nlohmann::json nodesJson = nlohmann::json::array();
+  for (const NodeReport& n : perNode) {
+    nlohmann::json nj;
+    nj["rank"] = n.rank;
+    nj["render_s"] = n.renderSeconds;
+    nj["composite_s"] = n.compositeSeconds();
+    nj["wait_s"] = n.waitSeconds();
+    nj["rays"] = n.rays;
+    nj["samples"] = n.samples;
+    nj["bytes_sent"] = n.bytesSent();
+    nj["private_bytes"] = n.privateBytes;
+    nlohmann::json phases = nlohmann::json::array();
+    for (const PhaseStats& p : n.phases)
+      phases.push_back({{"label", p.label},
+                        {"partner", p.partner},
+                        {"region", {p.region.x, p.region.y, p.region.w, p.region.h}},
+                        {"composite_s", p.computeSeconds},
+                        {"wait_s", p.waitSeconds},
+                        {"pixels", p.pixels},
+                        {"bytes_sent", p.bytesSent},
+                        {"bytes_received", p.bytesReceived}});
+    nj["phases"] = std::move(phases);
+    nodesJson.push_back(std::move(nj));
+  }
+  j["per_node"] = std::move(nodesJson);
+  return j;
+}
+
+std::string formatFrameTable(const FrameStats& s) {
+  std::uint64_t privateMax = 0;
+  for (const NodeReport& n : s.perNode) privateMax = std::max(privateMax, n.privateBytes);
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "%d nodes, %dx%d, %s compositing, %s partition\n"
+                "  render     (max over nodes) %9.2f ms\n"
+                "  composite  (max over nodes) %9.2f ms   over %d phase(s)\n"
+                "  modelled parallel time      %9.2f ms   (max render + per-phase max composite)\n"
+                "  wall time, this machine     %9.2f ms   (distribute %.2f ms once, gather %.2f ms)\n"
+                "  samples %llu, rays %llu, bytes sent %s, node memory max %s, peak RSS %s\n",
+                s.nodes, s.width, s.height, s.strategy.c_str(), s.partition.c_str(), s.renderMax() * 1e3,
+                s.compositeMax() * 1e3, s.phaseCount(), s.modelledParallelSeconds() * 1e3, s.wallSeconds * 1e3,
+                s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
+                (unsigned long long)s.rays(), formatBytes(s.bytesSent()).c_str(), formatBytes(privateMax).c_str(),
+                formatBytes(s.peakRssBytes).c_str());
+  return text;
+}
+
+}  // namespace kdswap

@@ -1,0 +1,41 @@
+// FrameStats: one frame's figures, aggregated the way the paper reports them (maximum over
+// nodes), plus the modelled parallel time: max render + sum over phases of the max composite
+// time, as if every virtual node had its own processor (behind the paper's Figures 7 and 8).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/metrics/node_report.h"
+
+namespace kdswap {
+
+struct FrameStats {
+  int nodes = 0;
+  int width = 0, height = 0;
+  std::string strategy, partition;
+  double wallSeconds = 0;        //!< whole frame as measured, host to host
+  double distributeSeconds = 0;  //!< data distribution (once per cluster), paper Table 5
+  double gatherSeconds = 0;      //!< image gather on the host for this frame
+  std::uint64_t peakRssBytes = 0;
+  std::vector<NodeReport> perNode;
+
+  double renderMax() const;
+  double compositeMax() const;
+  double modelledParallelSeconds() const;
+  std::uint64_t samples() const;
+  std::uint64_t rays() const;
+  std::uint64_t bytesSent() const;
+  int phaseCount() const;
+  double phaseComputeMax(int phase) const;
+
+  //! The stable JSON record (keys documented in README "Stats JSON").
+  nlohmann::json toJson() const;
+};
+
+//! The paper-style summary: render and composite (max over nodes), modelled time, traffic.
+std::string formatFrameTable(const FrameStats& stats);
+
+}  // namespace kdswap

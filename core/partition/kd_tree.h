@@ -1,0 +1,74 @@
+// KdTree: the paper's divide step (section 3.2). The data domain [0, dims-1] (voxel coordinates)
+// is split recursively by axis-aligned planes through voxel centres, alternating x, y, z (or
+// always along one axis, for slabs), into one brick per node; each brick owns [lo, hi).
+//
+// Node counts that are not a power of two: with P' the largest power of two <= P and e = P - P',
+// the tree has P' "virtual leaves"; leaf j holds rank j, and for j < e also rank j + P' as its
+// sibling (IceT's folding convention). Binary-swap's extra ranks fold into their siblings, so every
+// group a strategy composites is a subtree. Planes split space in proportion to the node counts
+// on each side, so every node gets about the same number of voxels.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/volume/voxel_box.h"
+
+namespace kdswap {
+
+class Camera;
+
+enum class PartitionKind { KdTree, Slab };
+PartitionKind parsePartition(const std::string& text);  //!< "kd" | "slab"; throws Error
+std::string toString(PartitionKind kind);
+
+struct KdNode {
+  VoxelBox box;       //!< region owned by this subtree
+  int axis = -1;      //!< split axis, -1 for a leaf
+  int plane = 0;      //!< split coordinate (voxel index); low child owns < plane, high child >= plane
+  int low = -1, high = -1;  //!< children (indices into nodes()), -1 for a leaf
+  int rank = -1;      //!< node (virtual processor) owning this leaf's brick
+};
+
+//! Front-to-back order of the ranks for one view. Any subtree of the k-d tree is contiguous in
+//! this order, so comparing two members compares their subtrees.
+struct VisibilityOrder {
+  std::vector<int> frontToBack;  //!< ranks, nearest brick first
+  std::vector<int> position;     //!< position[rank] = index of rank in frontToBack
+  bool inFront(int a, int b) const { return position[a] < position[b]; }
+};
+
+class KdTree {
+ public:
+  //! `slabAxis` is used by PartitionKind::Slab (0, 1 or 2).
+  static KdTree build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis = 2);
+
+  int ranks() const { return ranks_; }
+  const glm::ivec3& dims() const { return dims_; }
+  const VoxelBox& brick(int rank) const { return nodes_[leafOf_[rank]].box; }
+  const std::vector<KdNode>& nodes() const { return nodes_; }
+  int root() const { return 0; }
+
+  //! Visibility order for a camera; `spacing` maps voxel coordinates to world space.
+  VisibilityOrder order(const Camera& camera, const glm::vec3& spacing) const;
+
+ private:
+  int buildNode(const VoxelBox& box, int firstLeaf, int leafCount, int depth, PartitionKind kind, int slabAxis);
+  int leafNode(const VoxelBox& box, int rank);
+  int splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, int lowCount, int highCount,
+                VoxelBox& lowBox, VoxelBox& highBox);
+
+  glm::ivec3 dims_{0};
+  int ranks_ = 0;
+  int virtualLeaves_ = 0;  //!< P'
+  std::vector<KdNode> nodes_;
+  std::vector<int> leafOf_;  //!< rank -> node index
+};
+
+//! Slab axis for a view: the volume axis most nearly parallel to the viewing direction.
+int slabAxisFor(const Camera& camera);
+
+}  // namespace kdswap

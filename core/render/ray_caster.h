@@ -1,0 +1,45 @@
+// RayCaster: Levoy's front-to-back ray casting of one brick (paper section 3.1), with samples on a
+// global lattice: sample k of every ray sits at t = k * step from the ray origin, whichever brick
+// takes it, so a ray cut into segments samples exactly the points of the whole ray (Figure 3).
+// It knows nothing of nodes or messages: the whole volume is just a brick that owns everything.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+
+#include "core/camera/camera.h"
+#include "core/image/image.h"
+#include "core/render/render_settings.h"
+#include "core/transfer/transfer_function.h"
+#include "core/volume/brick.h"
+
+namespace kdswap {
+
+struct RenderCounters {
+  std::uint64_t rays = 0;     //!< rays that met the brick
+  std::uint64_t samples = 0;  //!< samples taken inside the brick
+  double seconds = 0.0;       //!< work time, summed over tiles (time on one processor)
+};
+
+class RayCaster {
+ public:
+  //! `valueRange` maps scalars to [0, 1]. The caster keeps references: all must outlive it.
+  RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange);
+
+  //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
+  //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
+  Image render(const Camera& camera, RenderCounters& counters) const;
+
+  //! One pixel, for tests: premultiplied colour and opacity of this brick's segment of the ray.
+  Rgba castRay(const Ray& ray, RenderCounters& counters) const;
+
+ private:
+  const Brick& brick_;
+  const TransferTable& table_;
+  const RenderSettings& settings_;
+  float scale_, bias_;   //!< normalised scalar = value * scale + bias
+  float stepWorld_;
+};
+
+}  // namespace kdswap

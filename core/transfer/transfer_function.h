@@ -1,0 +1,77 @@
+// TransferFunction: piecewise-linear colour and opacity maps over the normalised scalar [0, 1]
+// (Levoy 1988). Opacity is defined for a reference step of one voxel; TransferTable corrects it
+// for the actual step: alpha = 1 - (1 - alpha_tf)^(step / 1 voxel).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace kdswap {
+
+struct ColorStop {
+  float x = 0;           //!< normalised scalar in [0, 1]
+  glm::vec3 rgb{0.0f};   //!< linear colour in [0, 1]
+};
+
+struct OpacityPoint {
+  float x = 0;      //!< normalised scalar in [0, 1]
+  float alpha = 0;  //!< opacity per voxel of path length, in [0, 1]
+};
+
+class TransferFunction {
+ public:
+  TransferFunction() = default;
+  TransferFunction(std::vector<ColorStop> colors, std::vector<OpacityPoint> opacity, std::string name = "");
+
+  //! Colour (rgb) and per-voxel opacity (a) at normalised scalar s; clamped outside [0, 1].
+  glm::vec4 evaluate(float s) const;
+
+  const std::vector<ColorStop>& colors() const { return colors_; }
+  const std::vector<OpacityPoint>& opacity() const { return opacity_; }
+  const std::string& name() const { return name_; }
+  void setColors(std::vector<ColorStop> colors);
+  void setOpacity(std::vector<OpacityPoint> opacity);
+
+  //! kdswap JSON: {"name": ..., "colors": [[x, r, g, b], ...], "opacity": [[x, a], ...]}.
+  nlohmann::json toJson() const;
+  //! Accepts kdswap JSON, or a ParaView colour-map export ("RGBPoints", optional "Points");
+  //! `where` names the source in errors. Throws kdswap::Error.
+  static TransferFunction fromJson(const nlohmann::json& j, const std::string& where);
+  //! Grey ramp: opacity 0 up to `start`, rising linearly to `peak` at 1 (issue 6's VTK comparison).
+  static TransferFunction ramp(float start, float peak);
+
+ private:
+  void validate(const std::string& where) const;
+  std::vector<ColorStop> colors_;
+  std::vector<OpacityPoint> opacity_;
+  std::string name_;
+};
+
+//! A TransferFunction baked for one sampling step: a lookup table of colour and step-corrected
+//! opacity, interpolated linearly. The ray caster reads only this.
+class TransferTable {
+ public:
+  static constexpr int kSize = 1024;
+  TransferTable() = default;
+  TransferTable(const TransferFunction& tf, float stepVoxels);
+
+  glm::vec4 lookup(float s) const {
+    float f = s * float(kSize - 1);
+    f = f < 0.0f ? 0.0f : (f > float(kSize - 1) ? float(kSize - 1) : f);
+    const int i = int(f);
+    const int j = i + 1 < kSize ? i + 1 : i;
+    const float t = f - float(i);
+    return entries_[i] + t * (entries_[j] - entries_[i]);
+  }
+  //! Largest corrected opacity over normalised scalars in [s0, s1]: for empty-space skipping.
+  float maxAlpha(float s0, float s1) const;
+
+ private:
+  std::vector<glm::vec4> entries_;
+};
+
+}  // namespace kdswap

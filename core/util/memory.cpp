@@ -1,0 +1,45 @@
+// Reads /proc for memory figures; returns 0 where the kernel does not say.
+#include "core/util/memory.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace kdswap {
+namespace {
+
+std::uint64_t readKiBField(const char* path, const std::string& key) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.compare(0, key.size(), key) == 0) {
+      std::istringstream fields(line.substr(key.size()));
+      std::uint64_t kib = 0;
+      fields >> kib;
+      return kib * 1024;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::uint64_t peakResidentBytes() { return readKiBField("/proc/self/status", "VmHWM:"); }
+std::uint64_t currentResidentBytes() { return readKiBField("/proc/self/status", "VmRSS:"); }
+std::uint64_t availableMemoryBytes() { return readKiBField("/proc/meminfo", "MemAvailable:"); }
+
+std::string formatBytes(std::uint64_t bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
+  double value = double(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 4) {
+    value /= 1024.0;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
+  return text;
+}
+
+}  // namespace kdswap

@@ -1,0 +1,64 @@
+// Brick: one node's private subvolume (paper section 3.2). It owns the sample positions in the
+// continuous box [owned.lo, owned.hi) of voxel coordinates and stores the voxels it needs for them:
+// the owned voxels, the one replicated boundary layer that trilinear interpolation reaches across
+// a cut, and one more ghost layer so its central-difference gradients equal the whole volume's.
+// Gradients are precomputed per voxel (memory for time, as the paper does).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/volume/voxel_box.h"
+
+namespace kdswap {
+
+//! One stored voxel: scalar value and its central-difference gradient (per world unit).
+struct Voxel {
+  float value;
+  glm::vec3 gradient;
+};
+
+class Brick {
+ public:
+  Brick() = default;
+  //! `raw` holds the voxels of storedBoxFor(owned, dims) (x fastest); they are consumed.
+  Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw);
+
+  //! Voxel indices a brick owning `owned` must receive: [lo - 1, hi + 1] clipped to the volume.
+  static VoxelBox storedBoxFor(const VoxelBox& owned, const glm::ivec3& dims);
+  //! Voxel indices this brick owns for accounting: [lo, hi), plus hi where hi is the volume's
+  //! last voxel (the volume's upper faces belong to the bricks that touch them).
+  static VoxelBox ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims);
+
+  bool empty() const { return owned_.empty(); }
+  const VoxelBox& owned() const { return owned_; }
+  const VoxelBox& stored() const { return stored_; }
+  const glm::ivec3& volumeDims() const { return dims_; }
+  const glm::vec3& spacing() const { return spacing_; }
+  glm::vec3 worldLo() const { return glm::vec3(owned_.lo) * spacing_; }
+  glm::vec3 worldHi() const { return glm::vec3(owned_.hi) * spacing_; }
+
+  //! Stored voxel at global index (x, y, z), which must lie in stored().
+  const Voxel& voxel(int x, int y, int z) const {
+    return voxels_[(std::size_t(z - stored_.lo.z) * strideZ_) + std::size_t(y - stored_.lo.y) * strideY_ +
+                   std::size_t(x - stored_.lo.x)];
+  }
+  const Voxel* voxelData() const { return voxels_.data(); }
+  std::size_t strideY() const { return strideY_; }
+  std::size_t strideZ() const { return strideZ_; }
+
+  //! Bytes of this node's private memory held by the brick.
+  std::uint64_t bytes() const { return voxels_.size() * sizeof(Voxel); }
+
+ private:
+  VoxelBox owned_;
+  VoxelBox stored_;
+  glm::ivec3 dims_{0};
+  glm::vec3 spacing_{1.0f};
+  std::size_t strideY_ = 0, strideZ_ = 0;
+  std::vector<Voxel> voxels_;
+};
+
+}  // namespace kdswap

@@ -1,0 +1,74 @@
+// The registry of built-in data sets: the only list of them.
+#include "core/volume/datasets/dataset.h"
+
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "core/util/error.h"
+#include "core/volume/datasets/phantom.h"
+
+namespace kdswap {
+namespace {
+
+using Factory = std::function<std::unique_ptr<VolumeSource>(const glm::ivec3&)>;
+
+struct Entry {
+  Factory make;
+  glm::ivec3 defaultDims;
+};
+
+const std::map<std::string, Entry>& registry() {
+  static const std::map<std::string, Entry> entries = {
+      {"phantom", {makePhantom, glm::ivec3(128)}},
+  };
+  return entries;
+}
+
+glm::ivec3 parseSize(const std::string& text, const std::string& spec) {
+  std::vector<long long> parts;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, 'x')) {
+    std::size_t used = 0;
+    long long v = -1;
+    try {
+      v = std::stoll(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || item.empty())
+      throw Error("data set \"" + spec + "\": size \"" + text + "\" is not N or WxHxD");
+    parts.push_back(v);
+  }
+  if (parts.size() == 1) parts = {parts[0], parts[0], parts[0]};
+  if (parts.size() != 3) throw Error("data set \"" + spec + "\": size \"" + text + "\" is not N or WxHxD");
+  for (long long v : parts)
+    if (v < 2 || v > 8192)
+      throw Error("data set \"" + spec + "\": each size must be between 2 and 8192 voxels");
+  return glm::ivec3(int(parts[0]), int(parts[1]), int(parts[2]));
+}
+
+}  // namespace
+
+std::vector<std::string> datasetNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, entry] : registry()) names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<VolumeSource> openDataset(const std::string& spec) {
+  const std::size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  auto it = registry().find(name);
+  if (it == registry().end()) {
+    std::string valid;
+    for (const std::string& n : datasetNames()) valid += (valid.empty() ? "" : ", ") + n;
+    throw Error("data set \"" + name + "\": unknown (built-in data sets: " + valid + ")");
+  }
+  const glm::ivec3 dims = colon == std::string::npos ? it->second.defaultDims : parseSize(spec.substr(colon + 1), spec);
+  auto source = it->second.make(dims);
+  return source;
+}
+
+}  // namespace kdswap

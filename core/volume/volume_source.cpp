@@ -1,0 +1,31 @@
+// Shared validation of what readers and data sets report, so every path refuses the same things.
+#include "core/volume/volume_source.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/util/error.h"
+#include "core/util/memory.h"
+
+namespace kdswap {
+
+void validateVolumeInfo(const VolumeInfo& info, const std::string& where) {
+  const glm::ivec3& d = info.dims;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] < 2)
+      throw Error(where + ": dimensions " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
+                  std::to_string(d.z) + ": every dimension must be at least 2 voxels");
+    if (!(std::isfinite(info.spacing[a]) && info.spacing[a] > 0.0f))
+      throw Error(where + ": spacing along axis " + std::to_string(a) + " must be a positive number");
+  }
+  // Voxels plus gradients take 16 bytes each in the bricks (value + 3 gradient components).
+  const double voxels = double(d.x) * double(d.y) * double(d.z);
+  const double need = voxels * 16.0;
+  const double have = double(availableMemoryBytes());
+  if (voxels > 9.0e15 || (have > 0 && need > have))
+    throw Error(where + ": dimensions " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
+                std::to_string(d.z) + " need " + formatBytes(std::uint64_t(std::min(need, 1.8e19))) +
+                " for voxels and gradients, but only " + formatBytes(std::uint64_t(have)) + " is available");
+}
+
+}  // namespace kdswap

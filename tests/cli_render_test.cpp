@@ -1,0 +1,105 @@
+// The command line as a user runs it: the default scene renders to a non-blank picture, the
+// scripting interface (stats JSON, --verify) holds, and bad options give one line and exit 2.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image/image_io.h"
+
+using namespace kdswap;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code;
+  std::string err;
+};
+
+fs::path workDir() {
+  const fs::path dir = fs::temp_directory_path() / "kdswap-cli-test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+Run runKdswap(const std::string& args) {
+  const fs::path err = workDir() / "stderr.txt";
+  const std::string command = std::string(KDSWAP_BINARY_DIR) + "/app/kdswap " + args + " > /dev/null 2> " + err.string();
+  const int status = std::system(command.c_str());
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+int lineCount(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+TEST_CASE("kdswap render writes the default scene as a picture that is not blank") {
+  const fs::path png = workDir() / "default.png", exr = workDir() / "default.exr";
+  fs::remove(png);
+  fs::remove(exr);
+  REQUIRE(runKdswap("render --size 96x80 --out " + png.string()).code == 0);
+  REQUIRE(runKdswap("render --size 96x80 --nodes 4 --out " + exr.string()).code == 0);
+  const Image picture = readImage(exr.string());
+  CHECK(picture.width() == 96);
+  CHECK(picture.height() == 80);
+  int covered = 0, empty = 0;
+  for (int y = 0; y < 80; ++y)
+    for (int x = 0; x < 96; ++x) (picture.at(x, y).a > 0.0f ? covered : empty)++;
+  CHECK(covered > 96 * 80 / 10);  // the head fills a good part of the frame
+  CHECK(empty > 0);               // and there is background around it
+  const Image opaque = readImage(png.string());
+  CHECK(opaque.at(0, 0).r == 0.0f);                    // black background
+  CHECK(opaque.at(48, 40).r + opaque.at(48, 40).g > 0.05f);  // something drawn in the middle
+}
+
+TEST_CASE("kdswap render --verify --stats writes the documented JSON keys and passes") {
+  const fs::path json = workDir() / "stats.json";
+  const Run run = runKdswap("render --dataset phantom:48 --size 64x48 --nodes 6 --ert 1 --verify --stats " + json.string() +
+                         " --out " + (workDir() / "v.png").string());
+  CHECK(run.code == 0);
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"nodes", "image", "strategy", "partition", "wall_s", "render_s_max", "composite_s_max",
+                          "modelled_parallel_s", "samples", "rays", "bytes_sent", "peak_rss_bytes", "per_node",
+                          "distribute_s", "gather_s"})
+    CHECK_MESSAGE(j.contains(key), key);
+  CHECK(j["nodes"] == 6);
+  CHECK(j["per_node"].size() == 6);
+  CHECK(j["per_node"][0].contains("private_bytes"));
+  CHECK(j["verify"]["max_abs_diff"].get<double>() <= 1e-5);
+}
+
+TEST_CASE("kdswap render --phases writes the Figure 6 grid") {
+  const fs::path grid = workDir() / "grid.png";
+  fs::remove(grid);
+  CHECK(runKdswap("render --dataset phantom:32 --size 40x40 --nodes 8 --phases " + grid.string() + " --out " +
+               (workDir() / "g.png").string()).code == 0);
+  const Image img = readImage(grid.string());
+  CHECK(img.width() > 8 * 40 / 2);
+  CHECK(img.height() > 4 * 20);
+}
+
+TEST_CASE("bad options give one line on stderr and exit code 2") {
+  const std::string out = " --out " + (workDir() / "bad.png").string();
+  for (const std::string& args :
+       {std::string("render --size 0x10"), std::string("render --size 20000x10"), std::string("render --size banana"),
+        std::string("render --nodes 0"), std::string("render --nodes 5000"), std::string("render --no-such-option"),
+        std::string("render --composite magic"), std::string("render --volume /no/such/file.nrrd"),
+        std::string("render --tf no-such-preset"), std::string("render --step 0"), std::string("render --view 10")}) {
+    const Run run = runKdswap(args + out);
+    CHECK_MESSAGE(run.code == 2, args);
+    CHECK_MESSAGE(lineCount(run.err) == 1, args << " printed: " << run.err);
+  }
+  const Run unwritable = runKdswap("render --size 8x8 --out /no/such/folder/a.png");
+  CHECK(unwritable.code == 2);
+  CHECK(unwritable.err.find("/no/such/folder") != std::string::npos);
+}

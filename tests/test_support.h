@@ -1,0 +1,60 @@
+// Helpers shared by the test suites: small volumes, reference renders, reproduce lines.
+#pragma once
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "core/cluster/virtual_cluster.h"
+#include "core/render/reference_render.h"
+#include "core/transfer/transfer_function.h"
+#include "core/volume/memory_volume.h"
+
+namespace kdswap::test {
+
+//! A volume whose voxel (x, y, z) is f(x, y, z).
+inline std::unique_ptr<MemoryVolume> makeVolume(glm::ivec3 dims, const std::function<float(int, int, int)>& f,
+                                                glm::vec3 spacing = glm::vec3(1.0f)) {
+  std::vector<float> v(std::size_t(dims.x) * dims.y * dims.z);
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) v[(std::size_t(z) * dims.y + y) * dims.x + x] = f(x, y, z);
+  VolumeInfo info;
+  info.dims = dims;
+  info.spacing = spacing;
+  info.name = "test volume";
+  return std::make_unique<MemoryVolume>(info, std::move(v));
+}
+
+//! A smooth blobby volume with structure at every scale the tests use.
+inline std::unique_ptr<MemoryVolume> makeBlobs(glm::ivec3 dims, glm::vec3 spacing = glm::vec3(1.0f)) {
+  return makeVolume(
+      dims,
+      [dims](int x, int y, int z) {
+        const float u = float(x) / float(dims.x - 1), v = float(y) / float(dims.y - 1), w = float(z) / float(dims.z - 1);
+        const float r = std::sqrt((u - 0.5f) * (u - 0.5f) + (v - 0.5f) * (v - 0.5f) + (w - 0.5f) * (w - 0.5f));
+        const float ripple = 0.5f + 0.5f * std::sin(9.0f * u + 4.0f * v) * std::cos(7.0f * w - 3.0f * u);
+        return std::max(0.0f, 1.0f - 2.0f * r) * ripple;
+      },
+      spacing);
+}
+
+//! A colourful, moderately opaque transfer function that exercises colour and opacity.
+inline TransferFunction testTransfer() {
+  return TransferFunction({{0.0f, {0.1f, 0.2f, 0.9f}}, {0.4f, {0.9f, 0.5f, 0.1f}}, {1.0f, {1.0f, 1.0f, 0.8f}}},
+                          {{0.0f, 0.0f}, {0.05f, 0.0f}, {0.3f, 0.08f}, {0.6f, 0.3f}, {1.0f, 0.7f}}, "test");
+}
+
+inline std::string reproduce(int nodes, const std::string& strategy, const std::string& partition, int w, int h,
+                             const View& v) {
+  return "kdswap render --dataset <test volume> --nodes " + std::to_string(nodes) + " --composite " + strategy +
+         " --partition " + partition + " --size " + std::to_string(w) + "x" + std::to_string(h) + " --view " +
+         std::to_string(v.azimuthDeg) + "," + std::to_string(v.elevationDeg) + " --projection " +
+         toString(v.projection) + " --ert 1 --verify";
+}
+
+}  // namespace kdswap::test
