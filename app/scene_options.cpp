@@ -73,6 +73,7 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--tf", o.tf, "Transfer function: a preset name (see assets/presets) or a JSON file "
                                 "(kdswap or ParaView colour map). Default: the data set's preset");
   cmd->add_option("--shading", o.shading, "Phong shading from precomputed gradients: on or off")->capture_default_str();
+  cmd->add_option("--jitter", o.jitter, "Per-ray lattice phase against ring artefacts: on or off")->capture_default_str();
   cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold (1 disables)")->capture_default_str();
   cmd->add_option("--range", o.range, "Scalar range MIN,MAX mapped to [0,1] (default: the data's range)");
 }
@@ -128,6 +129,8 @@ Scene buildScene(const SceneOptions& o) {
   r.settings.stepVoxels = o.step;
   if (o.shading != "on" && o.shading != "off") throw Error("--shading \"" + o.shading + "\": expected on or off");
   r.settings.shading = o.shading == "on";
+  if (o.jitter != "on" && o.jitter != "off") throw Error("--jitter \"" + o.jitter + "\": expected on or off");
+  r.settings.jitter = o.jitter == "on";
   if (!(o.ert > 0.0f && o.ert <= 1.0f)) throw Error("--ert must be in (0, 1]");
   r.settings.earlyTermination = o.ert;
   if (!o.range.empty()) {

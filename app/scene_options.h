@@ -19,11 +19,12 @@ struct SceneOptions {
   std::string rawDims, rawType, rawEndian = "little", rawSpacing;
   std::string size = "512x512";
   std::string view = "30,15";
-  float distance = 3.0f, fov = 35.0f;
+  float distance = 2.5f, fov = 35.0f;
   std::string projection = "perspective", up = "+z";
   float step = 0.5f;
   std::string tf;
   std::string shading = "on";
+  std::string jitter = "on";
   float ert = 0.99f;
   std::string range;
   int nodes = 1;

@@ -63,7 +63,7 @@ TEST_CASE("a ray split into 2 to 8 segments at arbitrary cuts equals the whole r
         const glm::vec3 target = glm::vec3(u(rng), u(rng), u(rng)) * worldMax;
         glm::vec3 dir = glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
         if (r % 4 == 0) dir[axis] = 0.0f, dir = glm::normalize(dir);  // parallel to the cut planes
-        const Ray ray{target - dir * 200.0f, dir};
+        const Ray ray{target - dir * 200.0f, dir, u(rng)};  // random lattice phase, as jitter gives
         RenderCounters counters;
         const Rgba expected = wholeCaster.castRay(ray, counters);
         // Composite segments front to back: along the ray, lower `axis` first when dir[axis] >= 0.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -17,6 +18,17 @@ void axesFor(UpAxis up, glm::vec3& upAxis, glm::vec3& frontAxis) {
   upAxis = glm::vec3(0.0f);
   upAxis[axis] = sign;
   frontAxis = axis == 1 ? glm::vec3(0, 0, -1) : glm::vec3(0, -1, 0);
+}
+
+// Integer hash of a pixel (a few rounds of multiply-xorshift) mapped to [0, 1).
+float pixelHash(int px, int py) {
+  std::uint32_t h = std::uint32_t(px) * 0x8da6b343u ^ std::uint32_t(py) * 0xd8163841u;
+  h ^= h >> 16;
+  h *= 0x7feb352du;
+  h ^= h >> 15;
+  h *= 0x846ca68bu;
+  h ^= h >> 16;
+  return float(h >> 8) * (1.0f / 16777216.0f);
 }
 
 }  // namespace
@@ -46,8 +58,9 @@ Camera::Camera(const View& view, const glm::vec3& worldMin, const glm::vec3& wor
 Ray Camera::ray(int px, int py) const {
   const float sx = ((float(px) + 0.5f) / float(width_) * 2.0f - 1.0f) * aspect_ * halfHeight_;
   const float sy = (1.0f - (float(py) + 0.5f) / float(height_) * 2.0f) * halfHeight_;
-  if (orthographic_) return Ray{eye_ + sx * right_ + sy * up_, forward_};
-  return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_)};
+  const float offset = pixelHash(px, py);
+  if (orthographic_) return Ray{eye_ + sx * right_ + sy * up_, forward_, offset};
+  return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), offset};
 }
 
 Rect Camera::projectBox(const glm::vec3& lo, const glm::vec3& hi) const {

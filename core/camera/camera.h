@@ -10,8 +10,11 @@
 namespace kdswap {
 
 struct Ray {
-  glm::vec3 origin;     //!< world space; sample k sits at origin + direction * (k * step)
+  glm::vec3 origin;     //!< world space; sample k sits at origin + direction * ((k + offset) * step)
   glm::vec3 direction;  //!< unit length, world space
+  float offset = 0.0f;  //!< this ray's lattice phase in [0, 1): a hash of the pixel, so every
+                        //!< brick uses the same lattice for a ray while neighbouring rays differ
+                        //!< (jitter turns the rings of a fixed lattice into fine noise)
 };
 
 class Camera {

@@ -15,7 +15,7 @@ enum class UpAxis { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
 struct View {
   float azimuthDeg = 30.0f;    //!< orbit angle around the up axis; 0 looks from the "front" (-y side)
   float elevationDeg = 15.0f;  //!< angle above the equator, in (-90, 90)
-  float distance = 3.0f;       //!< eye distance from the centre, in bounding-sphere radii
+  float distance = 2.5f;       //!< eye distance from the centre, in bounding-sphere radii
   float fovDeg = 35.0f;        //!< vertical field of view; orthographic uses it to set the frame size
   Projection projection = Projection::Perspective;
   UpAxis up = UpAxis::PlusZ;

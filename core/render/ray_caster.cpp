@@ -61,9 +61,10 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   ++counters.rays;
 
   const float step = stepWorld_;
+  const float phase = settings_.jitter ? ray.offset : 0.0f;
   // One lattice index of slack on each side: the per-sample test below is the exact rule.
-  const long kBegin = std::max(0L, long(std::floor(tNear / step)) - 1);
-  const long kEnd = long(std::ceil(tFar / step)) + 1;
+  const long kBegin = std::max(0L, long(std::floor(tNear / step - phase)) - 1);
+  const long kEnd = long(std::ceil(tFar / step - phase)) + 1;
 
   const glm::vec3 toLight = -ray.direction;  // light at the eye
   const bool shading = settings_.shading;
@@ -73,7 +74,7 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
   for (long k = kBegin; k <= kEnd; ++k) {
-    const float t = float(k) * step;
+    const float t = (float(k) + phase) * step;
     const glm::vec3 p = o + d * t;
     // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
     if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;

@@ -59,7 +59,7 @@ std::unique_ptr<VolumeSource> makePhantom(const glm::ivec3& dims) {
   info.maxValue = 1.0f;
   info.name = "phantom";
   info.preset = "phantom";
-  const float edge = 2.0f / float(std::max({dims.x, dims.y, dims.z}) - 1);
+  const float edge = 3.0f / float(std::max({dims.x, dims.y, dims.z}) - 1);  // 1.5 voxels: no moire on the thin skull
   return std::make_unique<ProceduralSource>(info, [dims, edge](const VoxelBox& box, float* out) {
     const glm::ivec3 s = box.size();
     for (int z = 0; z < s.z; ++z)
