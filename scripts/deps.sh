@@ -6,6 +6,7 @@ KDSWAP_PACKAGES=(
   libtbb-dev libglm-dev libglfw3-dev libimgui-dev libopenimageio-dev doctest-dev
   libcli11-dev nlohmann-json3-dev zlib1g-dev libnifti-dev
   xvfb xauth libgl1-mesa-dri libgl-dev
+  libopenmpi-dev openmpi-bin
 )
 
 kdswap_install_missing() {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <oneapi/tbb/blocked_range2d.h>
 #include <oneapi/tbb/combinable.h>
@@ -20,6 +21,7 @@ namespace kdswap {
 namespace {
 
 constexpr int kTileSize = 16;
+constexpr int kSpecularEntries = 256;
 
 }  // namespace
 
@@ -30,6 +32,12 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   bias_ = span > 0.0f ? -valueRange.x / span : 0.0f;
   const glm::vec3 sp = brick.spacing();
   stepWorld_ = settings.stepVoxels * std::min({sp.x, sp.y, sp.z});
+  const std::vector<glm::vec2>& ranges = brick.cellRanges();
+  cellEmpty_.resize(ranges.size());
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    cellEmpty_[i] = ranges[i].x <= ranges[i].y && !table.anyVisible(ranges[i].x * scale_ + bias_, ranges[i].y * scale_ + bias_);
+  specular_.resize(kSpecularEntries + 1);
+  for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
 }
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
@@ -68,9 +76,11 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
 
   const glm::vec3 toLight = -ray.direction;  // light at the eye
   const bool shading = settings_.shading;
-  const float ka = settings_.ambient, kd = settings_.diffuse, ks = settings_.specular, shin = settings_.shininess;
+  const float ka = settings_.ambient, kd = settings_.diffuse, ks = settings_.specular;
   const float stopAt = settings_.earlyTermination;
 
+  const glm::ivec3 cellLo = brick_.cellLo(), cellCount = brick_.cellCount();
+  const float* specular = specular_.data();
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
   for (long k = kBegin; k <= kEnd; ++k) {
@@ -78,6 +88,18 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
     const glm::vec3 p = o + d * t;
     // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
     if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;
+    const glm::ivec3 c = (glm::ivec3(int(p.x), int(p.y), int(p.z)) >> Brick::kCellShift) - cellLo;
+    if (cellEmpty_[(std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x]) {
+      // Jump to just before the ray leaves this empty cell; samples there are all invisible.
+      const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo) << Brick::kCellShift), lo);
+      const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + 1) << Brick::kCellShift), hi);
+      float tExit = std::numeric_limits<float>::max();
+      for (int a = 0; a < 3; ++a)
+        if (d[a] != 0.0f) tExit = std::min(tExit, ((d[a] > 0.0f ? cHi[a] : cLo[a]) - o[a]) / d[a]);
+      const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
+      if (resume > k) k = resume;
+      continue;
+    }
     ++samples;
     const TrilinearCell cell(brick_, p);
     const float value = cell.value();
@@ -89,7 +111,9 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
       const float len2 = glm::dot(grad, grad);
       float lambert = 1.0f;  // no gradient (flat region): lit as if facing the light
       if (len2 > 0.0f) lambert = std::fabs(glm::dot(grad, toLight)) / std::sqrt(len2);
-      const float highlight = ks * std::pow(lambert, shin);
+      const float fs = std::min(lambert, 1.0f) * float(kSpecularEntries);
+      const int is = std::min(int(fs), kSpecularEntries - 1);
+      const float highlight = ks * (specular[is] + (fs - float(is)) * (specular[is + 1] - specular[is]));
       colour = glm::min(colour * (ka + kd * lambert) + highlight, glm::vec3(1.0f));
     }
     const float w = (1.0f - alpha) * tf.a;

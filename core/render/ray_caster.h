@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -40,6 +41,10 @@ class RayCaster {
   const RenderSettings& settings_;
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
   float stepWorld_;
+  //! Per macro cell of the brick: 1 when no sample there can be visible under this transfer
+  //! function (empty-space skipping; exact, since such samples add nothing).
+  std::vector<unsigned char> cellEmpty_;
+  std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
 };
 
 }  // namespace kdswap

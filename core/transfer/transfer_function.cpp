@@ -139,6 +139,17 @@ TransferTable::TransferTable(const TransferFunction& tf, float stepVoxels) : ent
     e.a = e.a >= 1.0f ? 1.0f : 1.0f - std::pow(1.0f - e.a, stepVoxels);
     entries_[i] = e;
   }
+  visibleBefore_.assign(kSize + 1, 0);
+  for (int i = 0; i < kSize; ++i) visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].a > 0.0f ? 1 : 0);
+}
+
+bool TransferTable::anyVisible(float s0, float s1) const {
+  if (entries_.empty()) return false;
+  if (!(s0 <= s1)) return true;  // NaN or reversed: do not skip
+  const float f0 = std::max(s0 * float(kSize - 1), -1.0f), f1 = std::min(s1 * float(kSize - 1), float(kSize));
+  const int i0 = std::clamp(int(std::floor(f0)) - 1, 0, kSize - 1);
+  const int i1 = std::clamp(int(std::ceil(f1)) + 1, 0, kSize - 1);
+  return visibleBefore_[i1 + 1] - visibleBefore_[i0] > 0;
 }
 
 float TransferTable::maxAlpha(float s0, float s1) const {

@@ -67,11 +67,15 @@ class TransferTable {
     const float t = f - float(i);
     return entries_[i] + t * (entries_[j] - entries_[i]);
   }
-  //! Largest corrected opacity over normalised scalars in [s0, s1]: for empty-space skipping.
+  //! Largest corrected opacity over normalised scalars in [s0, s1].
   float maxAlpha(float s0, float s1) const;
+  //! True when some lookup(s) with s in [s0, s1] can have opacity > 0 (conservative by one entry
+  //! on each side). Constant time: empty-space skipping asks it for every macro cell.
+  bool anyVisible(float s0, float s1) const;
 
  private:
   std::vector<glm::vec4> entries_;
+  std::vector<int> visibleBefore_;  //!< visibleBefore_[i]: entries before i with opacity > 0
 };
 
 }  // namespace kdswap

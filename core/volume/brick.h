@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/volume/voxel_box.h"
@@ -50,7 +51,15 @@ class Brick {
   std::size_t strideZ() const { return strideZ_; }
 
   //! Bytes of this node's private memory held by the brick.
-  std::uint64_t bytes() const { return voxels_.size() * sizeof(Voxel); }
+  std::uint64_t bytes() const { return voxels_.size() * sizeof(Voxel) + cellRanges_.size() * sizeof(glm::vec2); }
+
+  //! Macro cells for empty-space skipping: cell c covers samples whose floor lies in
+  //! [8c, 8c + 8) (global voxel index, per axis) and stores the min and max of every voxel a
+  //! trilinear sample there can touch. Sample values in the cell lie within that range.
+  static constexpr int kCellShift = 3;
+  const glm::ivec3& cellLo() const { return cellLo_; }      //!< first cell index per axis
+  const glm::ivec3& cellCount() const { return cellCount_; }
+  const std::vector<glm::vec2>& cellRanges() const { return cellRanges_; }
 
  private:
   VoxelBox owned_;
@@ -59,6 +68,10 @@ class Brick {
   glm::vec3 spacing_{1.0f};
   std::size_t strideY_ = 0, strideZ_ = 0;
   std::vector<Voxel> voxels_;
+  glm::ivec3 cellLo_{0}, cellCount_{0};
+  std::vector<glm::vec2> cellRanges_;  //!< (min, max) per macro cell, x fastest
+
+  void buildCells();
 };
 
 }  // namespace kdswap
