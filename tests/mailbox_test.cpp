@@ -2,6 +2,7 @@
 // and each sender's messages arrive in the order sent.
 #include <doctest/doctest.h>
 
+#include <functional>
 #include <thread>
 #include <vector>
 
@@ -17,28 +18,15 @@ namespace {
 constexpr int kProducers = 8;
 constexpr int kPerProducer = 100000;
 
-}  // namespace
-
-TEST_CASE("8 producers x 100000 messages into one mailbox: none lost, none duplicated, order kept") {
-  Mailbox box;
+// Producers are plain threads; the consumer drains in arrival order and checks each sender's
+// sequence. `consume` runs the consumer loop in whatever context the caller sets up.
+void stress(Mailbox& box, const std::function<void(const std::function<void()>&)>& consume) {
   std::vector<std::int64_t> nextExpected(kProducers, 0);
   long received = 0;
   bool inOrder = true;
   double waited = 0;
-  tbb::task_arena arena(2);
-  arena.execute([&] {
-    tbb::task_group consumer;
-    consumer.run([&] {
-      // The consumer is a task, so an empty mailbox suspends it instead of spinning.
-      for (long i = 0; i < long(kProducers) * kPerProducer; ++i) {
-        Message m = box.take(Mailbox::kAnySource, 1, waited);
-        const int p = m.source;
-        if (m.header.at(0) != nextExpected[std::size_t(p)]) inOrder = false;
-        nextExpected[std::size_t(p)] = m.header[0] + 1;
-        ++received;
-      }
-    });
-    std::vector<std::thread> producers;
+  std::vector<std::thread> producers;
+  consume([&] {
     for (int p = 0; p < kProducers; ++p)
       producers.emplace_back([&box, p] {
         for (int i = 0; i < kPerProducer; ++i) {
@@ -49,14 +37,60 @@ TEST_CASE("8 producers x 100000 messages into one mailbox: none lost, none dupli
           box.post(std::move(m));
         }
       });
-    for (std::thread& t : producers) t.join();
-    consumer.wait();
+    for (long i = 0; i < long(kProducers) * kPerProducer; ++i) {
+      Message m = box.take(Mailbox::kAnySource, 1, waited);
+      const int p = m.source;
+      if (m.header.at(0) != nextExpected[std::size_t(p)]) inOrder = false;
+      nextExpected[std::size_t(p)] = m.header[0] + 1;
+      ++received;
+    }
   });
+  for (std::thread& t : producers) t.join();
   CHECK(received == long(kProducers) * kPerProducer);
   CHECK(inOrder);
   for (int p = 0; p < kProducers; ++p) CHECK(nextExpected[std::size_t(p)] == kPerProducer);
   Message extra;
   CHECK_FALSE(box.tryTake(Mailbox::kAnySource, 1, extra));
+}
+
+}  // namespace
+
+TEST_CASE("8 producers x 100000 messages into one mailbox: none lost, none duplicated, order kept") {
+  Mailbox box;
+  tbb::task_arena arena(2);
+  stress(box, [&](const std::function<void()>& body) {
+    // The consumer is a oneTBB task, so an empty mailbox suspends it instead of spinning.
+    arena.execute([&] {
+      tbb::task_group consumer;
+      consumer.run(body);
+      consumer.wait();
+    });
+  });
+}
+
+TEST_CASE("a thread-blocking mailbox passes the same stress: 8 x 100000, none lost, order kept") {
+  Mailbox box(Mailbox::WaitMode::BlockThread);
+  stress(box, [](const std::function<void()>& body) {
+    std::thread consumer(body);
+    consumer.join();
+  });
+}
+
+TEST_CASE("abort wakes a thread-blocked consumer, which then fails instead of hanging") {
+  Mailbox box(Mailbox::WaitMode::BlockThread);
+  bool failed = false;
+  std::thread consumer([&] {
+    double waited = 0;
+    try {
+      box.take(0, 5, waited);
+    } catch (const MailboxAborted&) {
+      failed = true;
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  box.abort();
+  consumer.join();
+  CHECK(failed);
 }
 
 TEST_CASE("take picks the message matching source and tag and leaves the others queued") {

@@ -18,12 +18,23 @@ void Mailbox::post(Message message) {
   Node* node = new Node{std::move(message), head_.load(std::memory_order_relaxed)};
   while (!head_.compare_exchange_weak(node->next, node, std::memory_order_seq_cst, std::memory_order_relaxed)) {
   }
+  if (mode_ == WaitMode::BlockThread) {
+    head_.notify_one();
+    return;
+  }
   if (tbb::task::suspend_point sleeper = waiter_.exchange(nullptr, std::memory_order_seq_cst))
     tbb::task::resume(sleeper);
 }
 
 void Mailbox::abort() {
   aborted_.store(true, std::memory_order_seq_cst);
+  if (mode_ == WaitMode::BlockThread) {
+    // A blocked consumer wakes only when head_ changes: post a marker no take() ever matches.
+    Message marker;
+    marker.tag = kAbortMarkerTag;
+    post(std::move(marker));
+    return;
+  }
   if (tbb::task::suspend_point sleeper = waiter_.exchange(nullptr, std::memory_order_seq_cst))
     tbb::task::resume(sleeper);
 }
@@ -72,6 +83,13 @@ Message Mailbox::take(int source, int tag, double& waitedSeconds) {
     waitTag_.store(tag, std::memory_order_relaxed);
     waiting_.store(true, std::memory_order_relaxed);
     const double start = nowSeconds();
+    if (mode_ == WaitMode::BlockThread) {
+      // Waits while the list is empty; abort() notifies, and the loop re-checks aborted_.
+      head_.wait(nullptr, std::memory_order_acquire);
+      waitedSeconds += nowSeconds() - start;
+      waiting_.store(false, std::memory_order_relaxed);
+      continue;
+    }
     tbb::task::suspend([this](tbb::task::suspend_point self) {
       waiter_.store(self, std::memory_order_seq_cst);
       // Re-check after publishing the waiter: a post or abort that came before it found no one

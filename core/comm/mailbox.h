@@ -23,15 +23,21 @@ struct MailboxAborted {};
 class Mailbox {
  public:
   static constexpr int kAnySource = -2;
+  static constexpr int kAbortMarkerTag = -2147483647;  //!< never a real tag
 
-  Mailbox() = default;
+  //! How an empty take() waits: suspend the calling oneTBB task (virtual nodes), or block the
+  //! calling thread on the atomic list head (C++20 atomic wait: a futex, still no mutex) for
+  //! consumers that are plain threads, such as an MPI progress loop or a ThreadSanitizer test.
+  enum class WaitMode { SuspendTask, BlockThread };
+
+  explicit Mailbox(WaitMode mode = WaitMode::SuspendTask) : mode_(mode) {}
   Mailbox(const Mailbox&) = delete;
   Mailbox& operator=(const Mailbox&) = delete;
   ~Mailbox();
 
   //! Any thread. The message belongs to the mailbox (then its consumer) from here on.
   void post(Message message);
-  //! Consumer only, from inside a oneTBB task: the next message from `source` (or kAnySource)
+  //! Consumer only (from inside a oneTBB task in SuspendTask mode): the next message from `source` (or kAnySource)
   //! with `tag`, suspending until one arrives. Adds the time spent suspended to `waitedSeconds`.
   //! Throws MailboxAborted once abort() has been called and no matching message is queued.
   Message take(int source, int tag, double& waitedSeconds);
@@ -66,6 +72,7 @@ class Mailbox {
   std::atomic<int> waitSource_{0}, waitTag_{0};
   std::atomic<bool> waiting_{false};
   std::deque<Message> pending_;  //!< consumer only: drained, in arrival order
+  const WaitMode mode_;
 };
 
 }  // namespace kdswap
