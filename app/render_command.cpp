@@ -71,6 +71,7 @@ void run(const RenderOptions& o) {
   scene.request.recordPhases = !o.phases.empty() || !o.phasesDir.empty();
 
   VirtualCluster cluster(*scene.source, scene.cluster);
+  if (scene.fault.armed()) cluster.injectFault(scene.fault);
   FrameResult frame = cluster.renderFrame(scene.request);
   writeImage(o.out, frame.image, writeOptions);
   if (!o.quiet) std::printf("%s", formatFrameTable(frame.stats).c_str());

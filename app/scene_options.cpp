@@ -85,6 +85,14 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
   cmd->add_flag("--sparse", o.sparse, "Send only the bounding rectangle of non-empty pixels");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = every core)")->capture_default_str();
+  cmd->add_option("--stall-timeout", o.stallSeconds,
+                  "Abort a frame when no message moves for this many seconds, naming who waits on whom")
+      ->capture_default_str();
+  cmd->add_flag("--checksums", o.checksums, "Checksum every message and refuse corrupted ones");
+  cmd->add_option("--inject-fault", o.injectFault,
+                  "Testing: KIND:NODE[:MESSAGE[:DELAY_S]] with KIND throw-render, throw-composite, drop, delay "
+                  "or corrupt; the first frame fails with an error naming the node")
+      ->group("Testing");
 }
 
 Scene buildScene(const SceneOptions& o) {
@@ -149,6 +157,22 @@ Scene buildScene(const SceneOptions& o) {
   c.composite.sparse = o.sparse;
   if (o.threads < 0 || o.threads > 1024) throw Error("--threads must be from 0 to 1024");
   c.threads = o.threads;
+  if (!(o.stallSeconds > 0.0 && o.stallSeconds <= 86400.0)) throw Error("--stall-timeout must be between 0 and 86400 seconds");
+  c.stallSeconds = o.stallSeconds;
+  c.checksums = c.checksums || o.checksums;
+  if (!o.injectFault.empty()) {
+    std::vector<std::string> parts;
+    std::stringstream in(o.injectFault);
+    for (std::string item; std::getline(in, item, ':');) parts.push_back(item);
+    if (parts.size() < 2 || parts.size() > 4) throw Error("--inject-fault \"" + o.injectFault + "\": expected KIND:NODE[:MESSAGE[:DELAY_S]]");
+    scene.fault.kind = parseFaultKind(parts[0]);
+    const auto numbers = parseNumbers(o.injectFault.substr(parts[0].size() + 1), ':', "--inject-fault");
+    scene.fault.node = int(numbers[0]);
+    if (scene.fault.node < 0 || scene.fault.node >= c.nodes) throw Error("--inject-fault: node must be from 0 to " + std::to_string(c.nodes - 1));
+    if (numbers.size() > 1) scene.fault.message = int(numbers[1]);
+    if (numbers.size() > 2) scene.fault.delaySeconds = numbers[2];
+    if (scene.fault.kind == FaultPlan::Kind::CorruptMessage) c.checksums = true;
+  }
   if (c.partition == PartitionKind::Slab) {
     const Camera camera(r.view, glm::vec3(0.0f), info.worldMax(), r.width, r.height);
     c.slabAxis = slabAxisFor(camera);

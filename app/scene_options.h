@@ -32,12 +32,16 @@ struct SceneOptions {
   std::string partition = "kd";
   bool sparse = false;
   int threads = 0;
+  double stallSeconds = 60.0;
+  std::string injectFault;  //!< test-only: KIND:NODE[:MESSAGE[:DELAY_S]]
+  bool checksums = false;
 };
 
 struct Scene {
   std::unique_ptr<VolumeSource> source;
   FrameRequest request;
   ClusterOptions cluster;
+  FaultPlan fault;  //!< test-only, for the first frame
 };
 
 //! Adds the volume, view and render options to `cmd`.

@@ -110,6 +110,7 @@ TEST_CASE("every strategy and partition matches the single-node image for P = 1 
     for (PartitionKind partition : {PartitionKind::KdTree, PartitionKind::Slab})
       for (int nodes = 1; nodes <= 64; ++nodes) {
         ClusterOptions options;
+        options.checksums = true;  // every message verified on arrival
         options.nodes = nodes;
         options.strategy = strategy;
         options.partition = partition;
@@ -124,6 +125,7 @@ TEST_CASE("large node counts 128, 512 and 1024 match the single-node image, empt
   for (const std::string& strategy : strategyNames())
     for (int nodes : {128, 512, 1024}) {
       ClusterOptions options;
+      options.checksums = true;  // every message verified on arrival
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);
@@ -135,6 +137,7 @@ TEST_CASE("views exactly along each axis, parallel to the cut planes, show no se
   for (const std::string& strategy : strategyNames())
     for (int nodes : {2, 3, 8, 13, 16}) {
       ClusterOptions options;
+      options.checksums = true;  // every message verified on arrival
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);
@@ -148,6 +151,7 @@ TEST_CASE("odd and degenerate image sizes 317x211, 1x1, 64x1 and 1x64 match the 
   for (const std::string& strategy : strategyNames())
     for (int nodes : {1, 5, 7, 12, 31}) {
       ClusterOptions options;
+      options.checksums = true;  // every message verified on arrival
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);
@@ -155,6 +159,7 @@ TEST_CASE("odd and degenerate image sizes 317x211, 1x1, 64x1 and 1x64 match the 
     }
   for (int nodes : {8, 13}) {
     ClusterOptions options;
+    options.checksums = true;  // every message verified on arrival
     options.nodes = nodes;
     VirtualCluster cluster(*fixture().volume, options);
     checkViews(cluster, "kd", randomViews(rng, 2), {{317, 211}});
@@ -163,6 +168,7 @@ TEST_CASE("odd and degenerate image sizes 317x211, 1x1, 64x1 and 1x64 match the 
 
 TEST_CASE("with early ray termination on, the distributed image stays within the threshold's bound") {
   ClusterOptions options;
+  options.checksums = true;  // every message verified on arrival
   options.nodes = 8;
   VirtualCluster cluster(*fixture().volume, options);
   FrameRequest request = requestFor(View{}, 64, 48);
@@ -177,6 +183,7 @@ TEST_CASE("the final tiles partition the frame: every pixel comes from exactly o
   for (const std::string& strategy : strategyNames())
     for (int nodes : {1, 3, 6, 8, 11, 32}) {
       ClusterOptions options;
+      options.checksums = true;  // every message verified on arrival
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);

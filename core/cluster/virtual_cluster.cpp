@@ -89,6 +89,30 @@ VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions&
 
 VirtualCluster::~VirtualCluster() = default;
 
+InprocCommunicator::SendFilter VirtualCluster::faultFilter(int rank) {
+  const FaultPlan fault = fault_;
+  if (!fault.armed() || fault.node != rank || fault.kind == FaultPlan::Kind::ThrowInRender) return {};
+  auto sent = std::make_shared<int>(0);
+  return [fault, sent, rank](Message& m) {
+    const int index = (*sent)++;
+    switch (fault.kind) {
+      case FaultPlan::Kind::ThrowInComposite:
+        throw Error("injected fault: node " + std::to_string(rank) + " failed while compositing (tag " +
+                    std::to_string(m.tag) + ")");
+      case FaultPlan::Kind::DropMessage:
+        return index != fault.message;
+      case FaultPlan::Kind::DelayMessage:
+        if (index == fault.message) std::this_thread::sleep_for(std::chrono::duration<double>(fault.delaySeconds));
+        return true;
+      case FaultPlan::Kind::CorruptMessage:
+        if (index == fault.message && !m.payload.empty()) m.payload[m.payload.size() / 2] += 0.5f;
+        return true;
+      default:
+        return true;
+    }
+  };
+}
+
 template <typename Body>
 void VirtualCluster::runOnNodes(Body&& body, bool withHostTask, const std::function<void()>& hostTask) {
   network_.reset();
@@ -108,7 +132,7 @@ void VirtualCluster::runOnNodes(Body&& body, bool withHostTask, const std::funct
         });
       for (int r = 0; r < options_.nodes; ++r)
         group.run([&, r] {
-          InprocCommunicator comm(network_, r);
+          InprocCommunicator comm(network_, r, options_.checksums, faultFilter(r));
           try {
             body(r, comm);
           } catch (const std::exception& e) {
@@ -137,18 +161,34 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
     result.phases->cells.resize(std::size_t(options_.nodes));
   }
   std::vector<NodeReport> reports(std::size_t(options_.nodes));
+  const FaultPlan fault = fault_;
+  struct Disarm {  // the plan is for this frame only, whether it fails or not
+    FaultPlan& plan;
+    ~Disarm() { plan = FaultPlan{}; }
+  } disarm{fault_};
   runOnNodes(
       [&](int rank, Communicator& comm) {
+        if (fault.kind == FaultPlan::Kind::ThrowInRender && fault.node == rank)
+          throw Error("injected fault: node " + std::to_string(rank) + " failed while rendering");
         reports[std::size_t(rank)] = runNodeFrame(nodes_[std::size_t(rank)], comm, plan, result.phases.get());
       },
       false, {});
 
   // Gather: every tile is in the host's mailbox by now.
   const double gatherStart = nowSeconds();
-  std::vector<Message> tiles(std::size_t(options_.nodes));
-  for (Message& tile : tiles)
-    if (!network_.mailbox(Communicator::kHost).tryTake(Mailbox::kAnySource, kTileTag, tile))
-      throw Error("gather: a node finished without sending its tile");
+  std::vector<Message> tiles;
+  tiles.reserve(std::size_t(options_.nodes));
+  for (Message tile; network_.mailbox(Communicator::kHost).tryTake(Mailbox::kAnySource, kTileTag, tile);)
+    tiles.push_back(std::move(tile));
+  if (int(tiles.size()) != options_.nodes) {
+    std::vector<bool> arrived(std::size_t(options_.nodes), false);
+    for (const Message& t : tiles)
+      if (t.source >= 0 && t.source < options_.nodes) arrived[std::size_t(t.source)] = true;
+    std::string missing;
+    for (int r = 0; r < options_.nodes; ++r)
+      if (!arrived[std::size_t(r)]) missing += (missing.empty() ? "" : ", ") + std::to_string(r);
+    throw Error("gather: no tile arrived from node " + missing + " (the message was lost)");
+  }
   result.image = assembleTiles(tiles, plan.frame(), &result.tiles);
   const double end = nowSeconds();
 

@@ -11,6 +11,7 @@
 
 #include <oneapi/tbb/task_arena.h>
 
+#include "core/cluster/fault_plan.h"
 #include "core/cluster/frame_request.h"
 #include "core/cluster/node_program.h"
 #include "core/cluster/phase_record.h"
@@ -32,6 +33,12 @@ struct ClusterOptions {
   CompositeOptions composite;
   int threads = 0;                       //!< worker threads; 0 = every core
   double stallSeconds = 60.0;            //!< a frame with no message for this long is aborted
+  bool checksums = kChecksumsByDefault;  //!< checksum every message; a corrupted one is refused
+#if defined(KDSWAP_CHECKS) && KDSWAP_CHECKS
+  static constexpr bool kChecksumsByDefault = true;
+#else
+  static constexpr bool kChecksumsByDefault = false;
+#endif
 };
 
 struct FrameResult {
@@ -52,12 +59,16 @@ class VirtualCluster {
   //! frame stalls; the cluster stays usable for the next frame.
   FrameResult renderFrame(const FrameRequest& request);
 
+  //! Test-only: the next frame suffers `fault` (one frame only).
+  void injectFault(const FaultPlan& fault) { fault_ = fault; }
+
   const KdTree& tree() const { return tree_; }
   const VolumeInfo& info() const { return info_; }
   const ClusterOptions& options() const { return options_; }
   double distributeSeconds() const { return distributeSeconds_; }
 
  private:
+  InprocCommunicator::SendFilter faultFilter(int rank);
   template <typename Body>
   void runOnNodes(Body&& body, bool withHostTask, const std::function<void()>& hostTask);
 
@@ -69,6 +80,7 @@ class VirtualCluster {
   InprocNetwork network_;
   std::vector<NodeState> nodes_;  //!< nodes_[r] is touched only by node r's task
   double distributeSeconds_ = 0;
+  FaultPlan fault_;  //!< armed for the next frame only
 };
 
 }  // namespace kdswap

@@ -58,6 +58,8 @@ void InprocCommunicator::send(int dest, int tag, Message message) {
   message.tag = tag;
   counters_.bytesSent += message.bytes();
   ++counters_.messagesSent;
+  if (checksums_) message.checksum = messageChecksum(message);
+  if (filter_ && !filter_(message)) return;  // dropped by fault injection
   network_.mailbox(dest).post(std::move(message));
   network_.countDelivery();
 }
@@ -67,6 +69,10 @@ Message InprocCommunicator::receive(int source, int tag) {
     Message m = network_.mailbox(rank_).take(source, tag, counters_.waitSeconds);
     counters_.bytesReceived += m.bytes();
     ++counters_.messagesReceived;
+    if (m.checksum != 0 && m.checksum != messageChecksum(m))
+      throw Error("node " + std::to_string(rank_) + ": message from " +
+                  (m.source < 0 ? std::string("the host") : "node " + std::to_string(m.source)) + " (tag " +
+                  std::to_string(m.tag) + ") failed its checksum: corrupted in transit, not composited");
     return m;
   } catch (const MailboxAborted&) {
     throw Error("node " + std::to_string(rank_) + ": frame aborted while waiting for " +

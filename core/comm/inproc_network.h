@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -45,7 +46,12 @@ class InprocNetwork {
 
 class InprocCommunicator : public Communicator {
  public:
-  InprocCommunicator(InprocNetwork& network, int rank) : network_(network), rank_(rank) {}
+  //! Test hook run on every outgoing message after its checksum is taken: may change it, sleep,
+  //! throw, or return false to drop it (fault injection).
+  using SendFilter = std::function<bool(Message&)>;
+
+  InprocCommunicator(InprocNetwork& network, int rank, bool checksums = false, SendFilter filter = {})
+      : network_(network), rank_(rank), checksums_(checksums), filter_(std::move(filter)) {}
 
   int rank() const override { return rank_; }
   int size() const override { return network_.nodes(); }
@@ -56,6 +62,8 @@ class InprocCommunicator : public Communicator {
  private:
   InprocNetwork& network_;
   int rank_;
+  bool checksums_;
+  SendFilter filter_;
   CommCounters counters_;
 };
 
