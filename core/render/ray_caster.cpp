@@ -36,19 +36,35 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   cellEmpty_.resize(ranges.size());
   for (std::size_t i = 0; i < ranges.size(); ++i)
     cellEmpty_[i] = ranges[i].x <= ranges[i].y && !table.anyVisible(ranges[i].x * scale_ + bias_, ranges[i].y * scale_ + bias_);
+  // Tight box around the cells that can be visible: outside it every sample is invisible.
+  const glm::ivec3 n = brick.cellCount(), c0 = brick.cellLo();
+  glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x)
+        if (!cellEmpty_[(std::size_t(z) * n.y + y) * n.x + x]) {
+          lo = glm::min(lo, glm::ivec3(x, y, z));
+          hi = glm::max(hi, glm::ivec3(x, y, z));
+        }
+  anyVisible_ = !brick.empty() && lo.x <= hi.x;
+  if (anyVisible_) {
+    visibleLo_ = glm::max(glm::vec3((lo + c0) << Brick::kCellShift), glm::vec3(brick.owned().lo));
+    visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << Brick::kCellShift), glm::vec3(brick.owned().hi));
+  }
   specular_.resize(kSpecularEntries + 1);
   for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
 }
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
-  if (brick_.empty()) return Rgba{};
+  if (!anyVisible_) return Rgba{};
   // Ray in voxel coordinates: every brick computes these identically for the same pixel.
   const glm::vec3 spacing = brick_.spacing();
   const glm::vec3 o = ray.origin / spacing;
   const glm::vec3 d = ray.direction / spacing;
   const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
+  const glm::vec3 clipLo = visibleLo_, clipHi = visibleHi_;
 
-  // Clip to the owned box, grown by more than the rounding error of p = o + d * t, to bound the
+  // Clip to the visible part of the owned box, grown by more than the rounding error of p = o + d * t, to bound the
   // lattice indices; membership is then decided per sample on the computed p. The margin matters
   // for rays nearly parallel to a face, where a tiny error in p is a large error in t.
   const float magnitude = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)}) +
@@ -57,10 +73,10 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   float tNear = 0.0f, tFar = std::numeric_limits<float>::max();
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0.0f) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return Rgba{};
+      if (o[a] < clipLo[a] - margin || o[a] > clipHi[a] + margin) return Rgba{};
       continue;
     }
-    float t1 = (lo[a] - margin - o[a]) / d[a], t2 = (hi[a] + margin - o[a]) / d[a];
+    float t1 = (clipLo[a] - margin - o[a]) / d[a], t2 = (clipHi[a] + margin - o[a]) / d[a];
     if (t1 > t2) std::swap(t1, t2);
     tNear = std::max(tNear, t1);
     tFar = std::min(tFar, t2);
@@ -102,12 +118,13 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
     }
     ++samples;
     const TrilinearCell cell(brick_, p);
-    const float value = cell.value();
+    const TrilinearCell::Lanes both = cell.interpolate();
+    const float value = both[0];
     const glm::vec4 tf = table_.lookup(value * scale_ + bias_);
     if (tf.a <= 0.0f) continue;
     glm::vec3 colour(tf.r, tf.g, tf.b);
     if (shading) {
-      const glm::vec3 grad = cell.gradient();
+      const glm::vec3 grad(both[1], both[2], both[3]);
       const float len2 = glm::dot(grad, grad);
       float lambert = 1.0f;  // no gradient (flat region): lit as if facing the light
       if (len2 > 0.0f) lambert = std::fabs(glm::dot(grad, toLight)) / std::sqrt(len2);
@@ -128,8 +145,9 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
 }
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
-  if (brick_.empty()) return Image{};
-  const Rect rect = camera.projectBox(brick_.worldLo(), brick_.worldHi());
+  if (!anyVisible_) return Image{};
+  const glm::vec3 spacing = brick_.spacing();
+  const Rect rect = camera.projectBox(visibleLo_ * spacing, visibleHi_ * spacing);
   Image image(rect);
   if (rect.empty()) return image;
   tbb::combinable<RenderCounters> perThread;

@@ -45,6 +45,10 @@ class RayCaster {
   //! function (empty-space skipping; exact, since such samples add nothing).
   std::vector<unsigned char> cellEmpty_;
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
+  //! Bounds of the cells that can be visible, within the owned box (voxel coordinates); empty
+  //! when nothing in the brick is visible. Rays and the screen rectangle are clipped to it.
+  glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
+  bool anyVisible_ = false;
 };
 
 }  // namespace kdswap

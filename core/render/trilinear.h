@@ -4,6 +4,8 @@
 
 #include "core/volume/brick.h"
 
+static_assert(sizeof(kdswap::Voxel) == 4 * sizeof(float), "a Voxel must be exactly 4 floats");
+
 namespace kdswap {
 
 //! Interpolation weights and the first of the 8 surrounding voxels of point p (voxel coordinates,
@@ -22,17 +24,22 @@ struct TrilinearCell {
     w[0] = gx * gy * gz, w[1] = fx * gy * gz, w[2] = gx * fy * gz, w[3] = fx * fy * gz;
     w[4] = gx * gy * fz, w[5] = fx * gy * fz, w[6] = gx * fy * fz, w[7] = fx * fy * fz;
   }
-  const Voxel& corner(int i) const {
-    return v[(i & 1 ? 1 : 0) + (i & 2 ? sy : 0) + (i & 4 ? sz : 0)];
+  //! Value and gradient interpolated together: a Voxel is 4 floats, so one 4-wide vector per
+  //! corner (GCC/Clang vector extension; SSE on x86-64). Lane 0 is the value, lanes 1-3 the gradient.
+  typedef float Lanes __attribute__((vector_size(16)));
+  Lanes interpolate() const {
+    auto load = [](const Voxel& voxel) {
+      Lanes l;
+      __builtin_memcpy(&l, &voxel, sizeof l);
+      return l;
+    };
+    return w[0] * load(v[0]) + w[1] * load(v[1]) + w[2] * load(v[sy]) + w[3] * load(v[sy + 1]) +
+           w[4] * load(v[sz]) + w[5] * load(v[sz + 1]) + w[6] * load(v[sz + sy]) + w[7] * load(v[sz + sy + 1]);
   }
-  float value() const {
-    return w[0] * v[0].value + w[1] * v[1].value + w[2] * v[sy].value + w[3] * v[sy + 1].value +
-           w[4] * v[sz].value + w[5] * v[sz + 1].value + w[6] * v[sz + sy].value + w[7] * v[sz + sy + 1].value;
-  }
+  float value() const { return interpolate()[0]; }
   glm::vec3 gradient() const {
-    return w[0] * v[0].gradient + w[1] * v[1].gradient + w[2] * v[sy].gradient + w[3] * v[sy + 1].gradient +
-           w[4] * v[sz].gradient + w[5] * v[sz + 1].gradient + w[6] * v[sz + sy].gradient +
-           w[7] * v[sz + sy + 1].gradient;
+    const Lanes l = interpolate();
+    return glm::vec3(l[1], l[2], l[3]);
   }
 };
 

@@ -36,13 +36,16 @@ constexpr Ellipsoid kEllipsoids[] = {
 float phantomValue(const glm::vec3& p, float edge) {
   float value = 0.0f;
   for (const Ellipsoid& e : kEllipsoids) {
-    const float c = std::cos(e.rotationDeg * 3.14159265f / 180.0f), s = std::sin(e.rotationDeg * 3.14159265f / 180.0f);
     const glm::vec3 d = p - e.centre;
+    // The soft indicator below is 0 for r >= 1 + width / 2, and r >= |d| / (largest semi-axis).
+    const float width = edge / std::min({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z});
+    const float reach = std::max({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z}) * (1.0f + 0.5f * width) * 1.001f;
+    if (d.x * d.x + d.y * d.y + d.z * d.z > reach * reach) continue;  // outside its reach: contributes 0
+    const float c = std::cos(e.rotationDeg * 3.14159265f / 180.0f), s = std::sin(e.rotationDeg * 3.14159265f / 180.0f);
     const glm::vec3 q(c * d.x + s * d.y, -s * d.x + c * d.y, d.z);
     const float r = std::sqrt((q.x * q.x) / (e.semiAxes.x * e.semiAxes.x) + (q.y * q.y) / (e.semiAxes.y * e.semiAxes.y) +
                               (q.z * q.z) / (e.semiAxes.z * e.semiAxes.z));
     // Soft indicator: 1 inside, 0 outside, linear across about one voxel at the surface.
-    const float width = edge / std::min({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z});
     const float inside = std::clamp((1.0f - r) / width + 0.5f, 0.0f, 1.0f);
     value += e.intensity * inside;
   }
