@@ -63,21 +63,26 @@ Ray Camera::ray(int px, int py) const {
   return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), offset};
 }
 
+std::optional<glm::vec2> Camera::project(const glm::vec3& world) const {
+  const glm::vec3 v = world - eye_;
+  float sx = glm::dot(v, right_), sy = glm::dot(v, up_);
+  if (!orthographic_) {
+    const float depth = glm::dot(v, forward_);
+    if (depth <= 1e-4f) return std::nullopt;
+    sx /= depth;
+    sy /= depth;
+  }
+  return glm::vec2((sx / (aspect_ * halfHeight_) + 1.0f) * 0.5f * float(width_),
+                   (1.0f - sy / halfHeight_) * 0.5f * float(height_));
+}
+
 Rect Camera::projectBox(const glm::vec3& lo, const glm::vec3& hi) const {
   float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::vec3 p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
-    const glm::vec3 v = p - eye_;
-    float sx = glm::dot(v, right_), sy = glm::dot(v, up_);
-    if (!orthographic_) {
-      const float depth = glm::dot(v, forward_);
-      if (depth <= 1e-4f) return frame();  // a corner at or behind the eye: cover everything
-      sx /= depth;
-      sy /= depth;
-    }
-    // Back to pixel coordinates (inverse of ray()).
-    const float px = (sx / (aspect_ * halfHeight_) + 1.0f) * 0.5f * float(width_);
-    const float py = (1.0f - sy / halfHeight_) * 0.5f * float(height_);
+    const std::optional<glm::vec2> pixel = project(p);
+    if (!pixel) return frame();  // a corner at or behind the eye: cover everything
+    const float px = pixel->x, py = pixel->y;
     if (!std::isfinite(px) || !std::isfinite(py)) return frame();
     minX = std::min(minX, px), maxX = std::max(maxX, px);
     minY = std::min(minY, py), maxY = std::max(maxY, py);

@@ -2,6 +2,9 @@
 // World space is voxel index times spacing; the volume's data domain is [0, (dims-1)*spacing].
 #pragma once
 
+#include <optional>
+
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/camera/view.h"
@@ -23,6 +26,9 @@ class Camera {
 
   //! The ray through the centre of pixel (px, py); y grows downward.
   Ray ray(int px, int py) const;
+  //! Pixel coordinates (continuous; pixel centres at +0.5) of a world point, or nothing when the
+  //! point is at or behind the eye (perspective).
+  std::optional<glm::vec2> project(const glm::vec3& world) const;
   //! Conservative pixel rectangle (clipped to the frame) covering the projection of a world box.
   Rect projectBox(const glm::vec3& lo, const glm::vec3& hi) const;
 

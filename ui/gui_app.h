@@ -1,0 +1,26 @@
+// The desktop app's window, loop and screenshot: GLFW + Dear ImGui (OpenGL 3.3 core) around the
+// panels in panels.h and the background RenderWorker.
+#pragma once
+
+#include <string>
+
+namespace kdswap {
+
+struct GuiOptions {
+  std::string dataset = "phantom:128";  //!< built-in data set spec or volume file path
+  int nodes = 8;
+  std::string partition = "kd";
+  std::string composite = "binary-swap";
+  std::string tf;                       //!< preset name or JSON path; empty: the data set's preset
+  int imageSize = 512;                  //!< rendered frame is imageSize x imageSize
+  int windowWidth = 1600, windowHeight = 1000;
+  std::string screenshot;               //!< write the window to this PNG after `frames` frames, then exit
+  int frames = 30;                      //!< UI frames after the first full frame arrived
+  std::string layout;                   //!< with --screenshot: JSON of where panels drew (for tests)
+};
+
+//! Runs the app until the window closes (or the screenshot is written). Returns the exit code.
+//! Throws kdswap::Error for a bad option or when no display / OpenGL 3.3 context is available.
+int runGui(const GuiOptions& options);
+
+}  // namespace kdswap

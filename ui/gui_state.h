@@ -1,0 +1,79 @@
+// GuiState: everything the panels draw from and edit. The user's intent (scene, view, transfer
+// function, settings) is edited by panels, which then call requestFrame(); the newest snapshots
+// the RenderWorker produced are read-only. The GUI loop (gui_app.cpp) turns requests into
+// submissions. Only the UI thread touches this.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "core/cluster/frame_request.h"
+#include "ui/gl_texture.h"
+#include "ui/render_worker.h"
+#include "ui/sweep_worker.h"
+
+namespace kdswap {
+
+//! Where things were drawn this UI frame, in window pixels (for --layout and the GUI test).
+struct DrawnLayout {
+  ImVec4 viewport{0, 0, 0, 0};  //!< x, y, w, h of the displayed image
+  int columns = 0, rows = 0;
+  struct Cell {
+    int node, phase;
+    ImVec4 rect;
+  };
+  std::vector<Cell> cells;
+};
+
+struct StagesUi {
+  int phase = -1;            //!< last phase shown; -1 follows the newest frame's last phase
+  bool playing = false;
+  double nextStepAt = 0;     //!< when the animation advances (ImGui time)
+  int selectedNode = -1, selectedPhase = -1;
+  float cellScale = 1.0f;    //!< multiplies the fit-to-width cell size
+};
+
+struct TransferUi {
+  int draggedPoint = -1;
+  std::string path = "transfer.json";
+  int preset = -1;
+};
+
+struct SettingsUi {
+  std::string typedData;  //!< the path or spec being typed
+  int nodes = 0;          //!< the node count while its slider is dragged
+};
+
+struct GuiState {
+  // The user's intent.
+  SceneSpec scene;
+  FrameRequest request;      //!< view, full-quality size, transfer function, settings
+  bool showBricks = true;
+  bool tfEdited = false;     //!< the user chose a transfer function; do not replace it by a preset
+
+  // Requests raised by panels this UI frame.
+  bool wantPreview = false;  //!< the view or a value is being dragged: a quick frame now
+  bool wantFull = false;     //!< a settled change: a full frame
+  void requestFrame(bool continuous) { (continuous ? wantPreview : wantFull) = true; }
+
+  // The newest results.
+  std::shared_ptr<const SceneSnapshot> sceneShown;  //!< the scene the newest frame came from
+  std::shared_ptr<const FrameSnapshot> frame;       //!< newest frame (maybe a preview)
+  std::shared_ptr<const FrameSnapshot> fullFrame;   //!< newest full frame (stages, timing)
+  GlTexture frameTexture, stagesTexture;
+  std::vector<std::string> errors;                  //!< shown until dismissed
+  bool rendering = false, building = false;
+
+  // Panels' own state.
+  StagesUi stages;
+  TransferUi transfer;
+  SettingsUi settings;
+  SweepWorker* sweep = nullptr;
+  std::vector<std::string> dataChoices;  //!< built-in specs, then files found
+  DrawnLayout layout;
+};
+
+}  // namespace kdswap

@@ -1,0 +1,162 @@
+// The GUI's background renderer: a single-slot mailbox (newest request wins) and one thread.
+#include "ui/render_worker.h"
+
+#include <algorithm>
+
+#include "core/util/clock.h"
+#include "core/util/error.h"
+#include "core/volume/datasets/dataset.h"
+#include "core/volume/reader.h"
+#include "ui/histogram.h"
+
+namespace kdswap {
+namespace {
+
+constexpr int kStageCellSide = 192;
+
+}  // namespace
+
+bool SceneSpec::sameScene(const SceneSpec& o) const {
+  const ClusterOptions &a = cluster, &b = o.cluster;
+  return data == o.data && a.nodes == b.nodes && a.partition == b.partition && a.slabAxis == b.slabAxis &&
+         a.strategy == b.strategy && a.threads == b.threads;
+}
+
+std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data) {
+  const std::string name = data.substr(0, data.find(':'));
+  const std::vector<std::string> names = datasetNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return openDataset(data);
+  return openVolumeFile(data);
+}
+
+RenderWorker::RenderWorker() : worker_([this] { run(); }) {}
+
+RenderWorker::~RenderWorker() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+    pending_.reset();
+  }
+  wake_.notify_all();
+  worker_.join();
+}
+
+std::uint64_t RenderWorker::submit(const SceneSpec& scene, const FrameRequest& request, bool preview) {
+  std::uint64_t id;
+  {
+    std::lock_guard lock(mutex_);
+    id = nextId_++;
+    pending_ = Job{id, scene, request, preview, nowSeconds()};
+  }
+  wake_.notify_one();
+  return id;
+}
+
+std::shared_ptr<const SceneSnapshot> RenderWorker::takeScene() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(newScene_, nullptr);
+}
+
+std::shared_ptr<const FrameSnapshot> RenderWorker::takeFrame() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(newFrame_, nullptr);
+}
+
+std::vector<std::string> RenderWorker::takeErrors() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(errors_, {});
+}
+
+bool RenderWorker::busy() const {
+  std::lock_guard lock(mutex_);
+  return inFlight_ || pending_.has_value();
+}
+
+bool RenderWorker::building() const {
+  std::lock_guard lock(mutex_);
+  return buildingScene_;
+}
+
+void RenderWorker::run() {
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || pending_.has_value(); });
+      if (stop_) return;
+      job = std::move(*pending_);
+      pending_.reset();
+      inFlight_ = true;
+    }
+    try {
+      process(job);
+    } catch (const std::exception& e) {
+      // A failed frame leaves the cluster usable (VirtualCluster's contract): report and go on.
+      std::lock_guard lock(mutex_);
+      errors_.push_back(e.what());
+    }
+    std::lock_guard lock(mutex_);
+    inFlight_ = false;
+  }
+}
+
+// Builds the scene when the spec changed. On failure the previous scene stays (and the failed
+// spec is remembered so that view changes submitted meanwhile do not retry it).
+bool RenderWorker::ensureScene(const SceneSpec& spec) {
+  if (scene_ && scene_->spec.sameScene(spec)) return true;
+  if (failedSpec_ && failedSpec_->sameScene(spec)) return scene_ != nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    buildingScene_ = true;
+  }
+  try {
+    const double start = nowSeconds();
+    std::shared_ptr<const VolumeSource> source = openVolumeSpec(spec.data);
+    auto cluster = std::make_unique<VirtualCluster>(*source, spec.cluster);
+    auto scene = std::make_shared<SceneSnapshot>();
+    scene->spec = spec;
+    scene->info = source->info();
+    scene->tree = cluster->tree();
+    scene->histogram = computeHistogram(*source);
+    scene->source = source;
+    scene->distributeSeconds = cluster->distributeSeconds();
+    scene->buildSeconds = nowSeconds() - start;
+    cluster_.reset();  // free the old bricks before publishing
+    cluster_ = std::move(cluster);
+    scene_ = scene;
+    failedSpec_.reset();
+    std::lock_guard lock(mutex_);
+    buildingScene_ = false;
+    newScene_ = scene;
+    return true;
+  } catch (const std::exception& e) {
+    failedSpec_ = spec;
+    std::lock_guard lock(mutex_);
+    buildingScene_ = false;
+    errors_.push_back(e.what());
+    return scene_ != nullptr;
+  }
+}
+
+void RenderWorker::process(const Job& job) {
+  if (!ensureScene(job.scene)) return;
+  FrameRequest request = job.request;
+  request.recordPhases = !job.preview;
+  FrameResult result = cluster_->renderFrame(request);
+  auto frame = std::make_shared<FrameSnapshot>();
+  frame->id = job.id;
+  frame->preview = job.preview;
+  frame->request = request;
+  frame->scene = scene_;
+  frame->stats = result.stats;
+  frame->image = toPixels(result.image, Rect{0, 0, request.width, request.height}, std::max(request.width, request.height));
+  if (result.phases) {
+    frame->stages = buildStageAtlas(*result.phases, kStageCellSide);
+    frame->phases = result.phases;
+  }
+  frame->seconds = nowSeconds() - job.submitted;
+  std::lock_guard lock(mutex_);
+  newFrame_ = frame;
+}
+
+}  // namespace kdswap

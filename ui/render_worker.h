@@ -1,0 +1,104 @@
+// RenderWorker: the GUI's background renderer. One std::thread owns the VolumeSource and the
+// VirtualCluster (which runs its nodes on oneTBB); the UI thread submits requests and polls for
+// finished snapshots, so rendering never blocks a UI frame. No ImGui in here.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/cluster/frame_request.h"
+#include "core/cluster/virtual_cluster.h"
+#include "ui/frame_pixels.h"
+
+namespace kdswap {
+
+//! What a cluster is built from; changing any of it rebuilds the cluster.
+struct SceneSpec {
+  std::string data = kDefaultDatasetSpec;  //!< built-in data set spec ("phantom:128") or a file path
+  ClusterOptions cluster;
+  static constexpr const char* kDefaultDatasetSpec = "phantom:128";
+  bool sameScene(const SceneSpec& o) const;
+};
+
+//! A scene the worker built successfully (immutable once published).
+struct SceneSnapshot {
+  SceneSpec spec;
+  VolumeInfo info;
+  KdTree tree;
+  std::vector<float> histogram;                //!< see computeHistogram
+  std::shared_ptr<const VolumeSource> source;  //!< thread-safe reads, shared with the sweep
+  double distributeSeconds = 0;
+  double buildSeconds = 0;
+};
+
+//! One finished frame, with everything the panels draw from.
+struct FrameSnapshot {
+  std::uint64_t id = 0;  //!< the submit() number it answers
+  bool preview = false;  //!< a quick frame rendered while the view moves
+  FrameRequest request;
+  std::shared_ptr<const SceneSnapshot> scene;
+  FrameStats stats;
+  Pixels image;                                //!< the final frame, full resolution
+  std::shared_ptr<const PhaseRecord> phases;   //!< null for previews
+  StageAtlas stages;                           //!< empty for previews
+  double seconds = 0;                          //!< submit-to-finish
+};
+
+class RenderWorker {
+ public:
+  RenderWorker();
+  ~RenderWorker();  //!< waits for the frame in flight, then joins
+  RenderWorker(const RenderWorker&) = delete;
+  RenderWorker& operator=(const RenderWorker&) = delete;
+
+  //! Queues a frame; a request still pending is dropped (only the newest matters). Returns its id.
+  std::uint64_t submit(const SceneSpec& scene, const FrameRequest& request, bool preview);
+  //! The newest scene built since the last call, or null.
+  std::shared_ptr<const SceneSnapshot> takeScene();
+  //! The newest finished frame since the last call, or null.
+  std::shared_ptr<const FrameSnapshot> takeFrame();
+  //! Errors since the last call (one line each): a scene that would not build, a failed frame.
+  std::vector<std::string> takeErrors();
+  //! True while a frame or a scene build is pending or in flight.
+  bool busy() const;
+  //! True while a scene is being built (data loading, distribution).
+  bool building() const;
+
+ private:
+  struct Job {
+    std::uint64_t id;
+    SceneSpec scene;
+    FrameRequest request;
+    bool preview;
+    double submitted;
+  };
+  void run();
+  void process(const Job& job);
+  bool ensureScene(const SceneSpec& spec);
+
+  mutable std::mutex mutex_;          //!< guards everything below up to worker_
+  std::condition_variable wake_;
+  std::optional<Job> pending_;
+  bool inFlight_ = false, buildingScene_ = false, stop_ = false;
+  std::uint64_t nextId_ = 1;
+  std::shared_ptr<const SceneSnapshot> newScene_;
+  std::shared_ptr<const FrameSnapshot> newFrame_;
+  std::vector<std::string> errors_;
+
+  // Touched only by the worker thread.
+  std::shared_ptr<const SceneSnapshot> scene_;
+  std::unique_ptr<VirtualCluster> cluster_;
+  std::optional<SceneSpec> failedSpec_;  //!< not retried until the spec changes
+  std::thread worker_;
+};
+
+//! Opens `data` as a built-in data set ("name[:size]") when the name is one, else as a file.
+std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data);
+
+}  // namespace kdswap
