@@ -7,6 +7,8 @@ namespace kdswap {
 
 void addRenderCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
+void addAnimateCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 
 }  // namespace kdswap
 

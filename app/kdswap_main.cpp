@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
       "(Ma, Painter, Hansen & Krogh 1993), on P virtual nodes in one process.\n"};
   app.require_subcommand(1);
   kdswap::addRenderCommand(app);
+  kdswap::addAnimateCommand(app);
+  kdswap::addBenchCommand(app);
+  kdswap::addInfoCommand(app);
   app.footer("Run 'kdswap SUBCOMMAND --help' for the options of each subcommand.");
   try {
     app.parse(argc, argv);

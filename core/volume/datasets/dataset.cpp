@@ -7,6 +7,8 @@
 
 #include "core/util/error.h"
 #include "core/volume/datasets/phantom.h"
+#include "core/volume/datasets/turbulence.h"
+#include "core/volume/datasets/vessels.h"
 
 namespace kdswap {
 namespace {
@@ -21,6 +23,8 @@ struct Entry {
 const std::map<std::string, Entry>& registry() {
   static const std::map<std::string, Entry> entries = {
       {"phantom", {makePhantom, glm::ivec3(128)}},
+      {"vessels", {makeVessels, glm::ivec3(128)}},
+      {"turbulence", {makeTurbulence, glm::ivec3(128)}},
   };
   return entries;
 }

@@ -1,0 +1,217 @@
+// `kdswap bench`: the paper's timing tables over a grid, kernel micro benchmarks (--micro), the
+// paper comparison (--paper) and issue 6's speed targets (--targets). Ctrl-C keeps the results.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "core/bench/bench_grid.h"
+#include "core/bench/bench_report.h"
+#include "core/bench/micro_bench.h"
+#include "core/bench/paper_comparison.h"
+#include "core/bench/quantised_source.h"
+#include "core/bench/speed_targets.h"
+#include "core/bench/speedup_chart.h"
+#include "core/image/image_io.h"
+#include "core/transfer/presets.h"
+#include "core/util/error.h"
+#include "core/volume/datasets/dataset.h"
+#include "core/volume/reader.h"
+
+namespace kdswap {
+namespace {
+
+struct BenchOptions {
+  std::string dataset, volume, sizes = "64,128,256,512", nodes = "1,2,4,8,16,32,64,128,256,512";
+  std::string composite = "binary-swap", tf, shading = "on", partition = "kd", outDir = "bench-out";
+  std::string head = "../shared/data/headsq.nhdr", view = "30,15";
+  int frames = 5, quantise = 0, threads = 0;
+  float step = 0.5f, degrees = 1.0f, ert = 0.99f;
+  bool sparse = false, micro = false, paper = false, targets = false;
+};
+
+// Set by SIGINT; polled after every frame (lock-free atomic: safe in a signal handler).
+std::atomic<bool> gStop{false};
+void onBenchInterrupt(int) { gStop.store(true); }
+
+template <typename T>
+std::vector<T> parseList(const std::string& text, const char* option, T lo, T hi) {
+  std::vector<T> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    long long v = -1;
+    try {
+      v = std::stoll(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || item.empty() || v < lo || v > hi)
+      throw Error(std::string(option) + " \"" + text + "\": \"" + item + "\" is not a whole number from " +
+                  std::to_string(lo) + " to " + std::to_string(hi));
+    out.push_back(T(v));
+  }
+  if (out.empty()) throw Error(std::string(option) + ": empty list");
+  return out;
+}
+
+std::vector<std::string> parseNames(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(item);
+  return out;
+}
+
+void progressLine(const BenchProgress& p) {
+  static const bool tty = isatty(2);
+  std::fprintf(stderr, "%s[%d/%d cells] %-32s %5.0f s elapsed, about %.0f s left%s", tty ? "\r" : "", p.cellsDone,
+               p.cellsTotal, p.current.c_str(), p.elapsedSeconds, p.remainingSeconds, tty ? "   " : "\n");
+}
+
+std::string commandLine(const BenchOptions& o) {
+  std::string c = "kdswap bench " + (o.volume.empty() ? "--dataset " + (o.dataset.empty() ? std::string(kDefaultDataset) : o.dataset)
+                                                      : "--volume " + o.volume);
+  if (o.quantise) c += " --quantise " + std::to_string(o.quantise);
+  char buf[512];
+  std::snprintf(buf, sizeof buf, " --sizes %s --nodes %s --composite %s --frames %d --degrees %g --step %g --shading %s --ert %g --view %s --partition %s%s --threads %d",
+                o.sizes.c_str(), o.nodes.c_str(), o.composite.c_str(), o.frames, double(o.degrees), double(o.step),
+                o.shading.c_str(), double(o.ert), o.view.c_str(), o.partition.c_str(), o.sparse ? " --sparse" : "",
+                o.threads);
+  return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --out-dir " + o.outDir;
+}
+
+void runGrid(const BenchOptions& o) {
+  if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
+  std::unique_ptr<VolumeSource> source =
+      o.volume.empty() ? openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset) : openVolumeFile(o.volume);
+  if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
+  const VolumeInfo& info = source->info();
+  BenchGridOptions g;
+  g.sizes = parseList<int>(o.sizes, "--sizes", 1, 16384);
+  g.nodes = parseList<int>(o.nodes, "--nodes", 1, kMaxNodes);
+  g.strategies = parseNames(o.composite);
+  for (const std::string& s : g.strategies) createStrategy(s);  // unknown names fail before any work
+  g.frames = o.frames;
+  g.degreesPerFrame = o.degrees;
+  float az = 0, el = 0;
+  if (std::sscanf(o.view.c_str(), "%f,%f", &az, &el) != 2) throw Error("--view \"" + o.view + "\": expected AZ,EL");
+  g.base.view.azimuthDeg = az, g.base.view.elevationDeg = el;
+  if (o.shading != "on" && o.shading != "off") throw Error("--shading \"" + o.shading + "\": expected on or off");
+  if (!(o.step >= 0.01f && o.step <= 16.0f)) throw Error("--step must be between 0.01 and 16 voxels");
+  if (!(o.ert > 0.0f && o.ert <= 1.0f)) throw Error("--ert must be in (0, 1]");
+  g.base.settings.stepVoxels = o.step;
+  g.base.settings.shading = o.shading == "on";
+  g.base.settings.earlyTermination = o.ert;
+  g.base.transfer = loadTransferFunction(!o.tf.empty() ? o.tf : (info.preset.empty() ? "grayscale" : info.preset));
+  g.cluster.partition = parsePartition(o.partition);
+  g.cluster.composite.sparse = o.sparse;
+  g.cluster.threads = o.threads;
+  std::filesystem::create_directories(o.outDir);
+
+  const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
+  std::fprintf(stderr, "\n");
+  BenchContext ctx{commandLine(o), o.volume.empty() ? (o.dataset.empty() ? kDefaultDataset : o.dataset) : o.volume,
+                   info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees};
+  std::printf("%s (%dx%dx%d %s), step %g, shading %s, median of %d frames turning %g deg/frame\n\n",
+              ctx.dataset.c_str(), info.dims.x, info.dims.y, info.dims.z, info.type.c_str(), double(o.step),
+              o.shading.c_str(), o.frames, double(o.degrees));
+  std::printf("%s%s", formatPaperLayout(result.cells).c_str(), formatCellDetails(result.cells).c_str());
+  const std::filesystem::path dir(o.outDir);
+  writeTextFile((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
+  writeTextFile((dir / "bench.json").string(), benchJson(ctx, result).dump(2) + "\n");
+  std::printf("wrote %s and %s\n", (dir / "bench.csv").c_str(), (dir / "bench.json").c_str());
+  for (std::size_t i = 0; i < g.strategies.size(); ++i) {
+    const std::string name = i == 0 ? "speedup.png" : "speedup-" + g.strategies[i] + ".png";
+    bool any = false;
+    for (const BenchCell& c : result.cells) any = any || c.strategy == g.strategies[i];
+    if (!any) continue;
+    writeImage((dir / name).string(), drawSpeedupChart(result.cells, g.strategies[i]));
+    std::printf("wrote %s (modelled speedup, %s)\n", (dir / name).c_str(), g.strategies[i].c_str());
+  }
+  if (result.interrupted) {
+    std::fprintf(stderr, "kdswap bench: interrupted; kept the %zu cells measured so far\n", result.cells.size());
+    throw CommandExit{130};
+  }
+}
+
+void run(const BenchOptions& o) {
+  if (o.frames < 1 || o.frames > 1000) throw Error("--frames must be from 1 to 1000");
+  if (o.quantise != 0 && o.quantise != 8 && o.quantise != 16) throw Error("--quantise must be 0, 8 or 16");
+  if (int(o.micro) + int(o.paper) + int(o.targets) > 1) throw Error("give at most one of --micro, --paper, --targets");
+  gStop.store(false);
+  auto previous = std::signal(SIGINT, onBenchInterrupt);
+  struct Restore {
+    decltype(previous) handler;
+    ~Restore() { std::signal(SIGINT, handler); }
+  } restore{previous};
+  auto log = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
+
+  if (o.micro) {
+    MicroOptions m;
+    log("ray casting on one core ...");
+    const auto rays = measureRayCasting(m);
+    log("over vs memcpy, 1024x1024 ...");
+    const CompositeFigure over = measureOver(1024, 1024, m.repeats);
+    log("binary-swap alone, 1024x1024, P=8 ...");
+    const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, m.repeats);
+    std::printf("%s", formatMicro(rays, over, swap, m).c_str());
+  } else if (o.paper) {
+    std::printf("%s", runPaperComparison(o.frames, log, &gStop).c_str());
+  } else if (o.targets) {
+    TargetOptions t;
+    t.frames = o.frames;
+    t.headPath = o.head;
+    std::printf("%s", formatSpeedTargets(runSpeedTargets(t, log, &gStop)).c_str());
+  } else {
+    runGrid(o);
+    return;
+  }
+  if (gStop.load()) throw CommandExit{130};
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "Time render and composite over a grid (the paper's Tables 1-8)");
+  cmd->footer(
+      "Examples:\n"
+      "  kdswap bench --dataset phantom:128 --sizes 64,128,256 --nodes 1,2,4,8,16\n"
+      "  kdswap bench --dataset turbulence:256 --composite binary-swap,binary-tree --frames 3\n"
+      "  kdswap bench --micro      kernels alone: ray casting per core, over vs memcpy, binary-swap\n"
+      "  kdswap bench --paper      the paper's sourced cells beside ours\n"
+      "  kdswap bench --targets    issue 6's speed targets, MET or MISSED\n"
+      "Ctrl-C stops after the current frame and writes what was measured (exit 130).\n");
+  cmd->add_option("--dataset", o->dataset, "Built-in data set NAME[:N]: phantom (head), vessels, turbulence (vorticity)");
+  cmd->add_option("--volume", o->volume, "Volume file instead of a data set");
+  cmd->add_option("--quantise", o->quantise, "Round the data to 8 or 16 bits first (0: as stored)");
+  cmd->add_option("--sizes", o->sizes, "Square image sides, comma-separated")->capture_default_str();
+  cmd->add_option("--nodes", o->nodes, "Node counts, comma-separated")->capture_default_str();
+  cmd->add_option("--composite", o->composite, "Strategies, comma-separated")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "Measured frames per cell (one warm-up frame more)")->capture_default_str();
+  cmd->add_option("--degrees", o->degrees, "Azimuth turn per frame, degrees")->capture_default_str();
+  cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION")->capture_default_str();
+  cmd->add_option("--step", o->step, "Sample spacing in voxels")->capture_default_str();
+  cmd->add_option("--shading", o->shading, "on or off")->capture_default_str();
+  cmd->add_option("--ert", o->ert, "Early ray termination threshold (1 disables)")->capture_default_str();
+  cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)");
+  cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
+  cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
+  cmd->add_option("--threads", o->threads, "Worker threads (0 = every core)")->capture_default_str();
+  cmd->add_option("--out-dir", o->outDir, "Folder for bench.csv, bench.json, speedup.png")->capture_default_str();
+  cmd->add_flag("--micro", o->micro, "Measure the kernels alone");
+  cmd->add_flag("--paper", o->paper, "Run the paper's sourced cells and compare");
+  cmd->add_flag("--targets", o->targets, "Measure issue 6's speed targets");
+  cmd->add_option("--head", o->head, "CT head for --targets")->capture_default_str();
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace kdswap

@@ -1,0 +1,159 @@
+// kdswap-mpi: `mpirun -np R kdswap-mpi render ...` runs the node program on R MPI ranks, K virtual
+// nodes each (P = R x K). Every rank parses the same command line into the same FrameRequest (no
+// broadcast needed); rank 0 is also the host: it writes the image and the stats.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+// The C API only: Open MPI's deprecated C++ bindings would need libmpi_cxx.
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+
+#include "app/scene_options.h"
+#include "core/cluster/mpi_cluster.h"
+#include "core/image/image_io.h"
+#include "core/render/reference_render.h"
+#include "core/util/error.h"
+
+namespace kdswap {
+namespace {
+
+struct MpiRenderOptions {
+  SceneOptions scene;
+  int nodesPerRank = 1;
+  double stallSeconds = 60.0;
+  std::string out = "render.png";
+  std::string stats;
+  bool verify = false;
+  bool quiet = false;
+};
+
+constexpr float kVerifyTolerance = 1e-5f;
+
+void checkOutputFolder(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
+}
+
+//! Rank 0, after a successful frame: image, table, optional verification and stats. Returns the
+//! exit code (1: verification failed).
+int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOutcome& outcome) {
+  const FrameResult& frame = outcome.result;
+  writeImage(o.out, frame.image);
+  if (!o.quiet)
+    std::printf("%s  over %d MPI rank(s) x %d node(s) per rank\nwrote %s\n", formatFrameTable(frame.stats).c_str(),
+                outcome.ranks, outcome.nodesPerRank, o.out.c_str());
+  nlohmann::json stats = outcome.statsJson();
+  bool verified = true;
+  if (o.verify) {
+    // The reference reads the whole volume, on rank 0 only.
+    const FrameRequest& r = scene.request;
+    const ReferenceResult ref = renderReference(wholeVolumeBrick(*scene.source), r.view, r.width, r.height, r.transfer,
+                                                r.settings, resolveValueRange(r.settings, scene.source->info()));
+    const float diff = maxAbsDifference(frame.image, ref.image, frame.image.rect());
+    const float ert = r.settings.earlyTermination;
+    const float tolerance = ert < 1.0f ? kVerifyTolerance + (1.0f - ert) : kVerifyTolerance;
+    verified = diff <= tolerance;
+    stats["verify"] = {{"max_abs_diff", diff}, {"tolerance", tolerance}, {"passed", verified}};
+    std::printf("verify: max |distributed - single node| = %.3g (tolerance %.3g): %s\n", diff, tolerance,
+                verified ? "OK" : "FAILED");
+  }
+  if (!o.stats.empty()) {
+    const std::string temp = o.stats + ".tmp";
+    std::ofstream(temp) << stats.dump(2) << "\n";
+    std::filesystem::rename(temp, o.stats);
+  }
+  return verified ? 0 : 1;
+}
+
+//! Every rank. Returns the exit code rank 0 decided (all ranks return the same).
+int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
+  const int ranks = session.size(), rank = session.rank();
+  if (o.nodesPerRank < 1 || std::int64_t(o.nodesPerRank) * ranks > kMaxNodes)
+    throw Error("--nodes-per-rank " + std::to_string(o.nodesPerRank) + ": ranks (" + std::to_string(ranks) +
+                ") x nodes per rank must be from 1 to " + std::to_string(kMaxNodes));
+  if (nodesGiven && o.scene.nodes != ranks * o.nodesPerRank)
+    throw Error("--nodes " + std::to_string(o.scene.nodes) + ": must equal MPI ranks (" + std::to_string(ranks) +
+                ") x --nodes-per-rank (" + std::to_string(o.nodesPerRank) + "); or leave it out");
+  if (!(o.stallSeconds > 0)) throw Error("--stall-seconds must be > 0");
+  o.scene.nodes = ranks * o.nodesPerRank;
+
+  MpiNetwork network(o.nodesPerRank, o.stallSeconds);
+  Scene scene;
+  bool prepared = false;
+  try {
+    if (rank == 0) {
+      if (!isSupportedImagePath(o.out)) throw Error("--out " + o.out + ": unsupported image extension");
+      checkOutputFolder(o.out);
+      if (!o.stats.empty()) checkOutputFolder(o.stats);
+    }
+    scene = buildScene(o.scene);  // opens the volume on this rank: headers only for plain files
+    prepared = true;
+  } catch (const std::exception& e) {
+    network.abortAll("rank " + std::to_string(rank) + ": " + e.what());
+  }
+  const MpiFrameOutcome outcome = renderFrameOverMpi(network, prepared ? scene.source.get() : nullptr,
+                                                     prepared ? &scene.request : nullptr, scene.cluster);
+  int code = 0;
+  if (rank == 0) {
+    try {
+      if (!outcome.ok) throw Error(outcome.error);
+      code = writeResults(o, scene, outcome);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+      code = 2;
+    }
+  }
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return code;
+}
+
+}  // namespace
+}  // namespace kdswap
+
+int main(int argc, char** argv) {
+  std::unique_ptr<kdswap::MpiSession> session;
+  try {
+    session = std::make_unique<kdswap::MpiSession>(argc, argv);
+  } catch (const kdswap::Error& e) {
+    std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+    return 2;
+  }
+  const bool root = session->rank() == 0;
+  CLI::App app{"kdswap-mpi: the kdswap node program on MPI ranks (mpirun -np R kdswap-mpi render ...)"};
+  app.require_subcommand(1);
+  kdswap::MpiRenderOptions o;
+  CLI::App* cmd = app.add_subcommand("render", "Render one frame on R ranks x K nodes and write the image on rank 0");
+  kdswap::addSceneOptions(cmd, o.scene);
+  kdswap::addClusterOptions(cmd, o.scene);
+  cmd->add_option("--nodes-per-rank,-k", o.nodesPerRank, "Virtual nodes K on each rank: P = ranks x K")
+      ->capture_default_str();
+  cmd->add_option("--stall-seconds", o.stallSeconds, "Abort when nodes wait with no traffic this long")
+      ->capture_default_str();
+  cmd->add_option("--out,-o", o.out, "Output image (.png, .exr, .tif), written by rank 0")->capture_default_str();
+  cmd->add_option("--stats", o.stats, "Write the frame's figures as JSON (kdswap render keys + per_rank)");
+  cmd->add_flag("--verify", o.verify, "Also render the single-node reference on rank 0; exit 1 if they differ");
+  cmd->add_flag("--quiet,-q", o.quiet, "Print nothing but errors and the verify line");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return root ? app.exit(e) : 0;
+  } catch (const CLI::CallForAllHelp& e) {
+    return root ? app.exit(e) : 0;
+  } catch (const CLI::ParseError& e) {
+    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+    return 2;
+  }
+  try {
+    return kdswap::run(o, *session, cmd->get_option("--nodes")->count() > 0);
+  } catch (const std::exception& e) {
+    // Option errors found before any traffic are the same on every rank: rank 0 reports them.
+    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,122 @@
+// Frame naming, the JSON-lines stats file and resume bookkeeping for `kdswap animate`.
+#include "core/animation/sequence_writer.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/util/error.h"
+
+namespace kdswap {
+namespace fs = std::filesystem;
+namespace {
+
+std::string numbered(const std::string& dir, const std::string& stem, int digits, int frame, const std::string& ext) {
+  char number[32];
+  std::snprintf(number, sizeof number, "%0*d", digits, frame);
+  return (fs::path(dir) / (stem + "_" + number + "." + ext)).string();
+}
+
+//! Reads the lines of an earlier run. Only the last line may be malformed: a run killed while
+//! writing it leaves it cut short, and that frame then simply counts as not done.
+std::map<int, nlohmann::json> readRecords(const std::string& path) {
+  std::map<int, nlohmann::json> records;
+  std::ifstream in(path);
+  if (!in) return records;
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    nlohmann::json j = nlohmann::json::parse(lines[i], nullptr, false);
+    const bool valid = !j.is_discarded() && j.is_object() && j.contains("frame") && j["frame"].is_number_integer();
+    if (!valid) {
+      if (i + 1 == lines.size()) break;
+      throw Error(path + ": line " + std::to_string(i + 1) + " is not a frame record; remove the file to start afresh");
+    }
+    const int frame = j["frame"].get<int>();
+    records[frame] = std::move(j);
+  }
+  return records;
+}
+
+void writeRecords(const std::string& path, const std::map<int, nlohmann::json>& records) {
+  const std::string temp = path + ".tmp";
+  {
+    std::ofstream out(temp, std::ios::trunc);
+    if (!out) throw Error(path + ": cannot open the stats file for writing");
+    for (const auto& [frame, j] : records) out << j.dump() << "\n";
+    if (!out) throw Error(path + ": write failed");
+  }
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) throw Error(path + ": cannot replace the stats file (" + ec.message() + ")");
+}
+
+bool matches(const nlohmann::json& record, const nlohmann::json& identity) {
+  for (const auto& [key, value] : identity.items())
+    if (!record.contains(key) || record[key] != value) return false;
+  return true;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+SequenceWriter::SequenceWriter(const SequenceOptions& o)
+    : dir_(o.dir),
+      extension_(o.extension),
+      statsPath_(o.statsPath.empty() ? (fs::path(o.dir) / "stats.jsonl").string() : o.statsPath) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec || !fs::is_directory(dir_))
+    throw Error(dir_ + ": cannot create the output folder" + (ec ? " (" + ec.message() + ")" : ""));
+  if (::access(dir_.c_str(), W_OK) != 0) throw Error(dir_ + ": the output folder is not writable");
+  for (int n = std::max(o.frames - 1, 0); n >= 10000; n /= 10) ++digits_;
+  if (o.resume) {
+    for (auto& [frame, j] : readRecords(statsPath_))
+      if (frame >= 0 && frame < o.frames && fs::exists(framePath(frame)) &&
+          matches(j, o.identity ? o.identity(frame) : nlohmann::json::object()))
+        records_[frame] = std::move(j);
+  }
+  writeRecords(statsPath_, records_);
+}
+
+std::string SequenceWriter::framePath(int frame) const { return numbered(dir_, "frame", digits_, frame, extension_); }
+std::string SequenceWriter::phasesPath(int frame) const { return numbered(dir_, "phases", digits_, frame, "png"); }
+std::string SequenceWriter::framePattern() const {
+  return (fs::path(dir_) / ("frame_%0" + std::to_string(digits_) + "d." + extension_)).string();
+}
+
+bool SequenceWriter::isDone(int frame) const { return records_.count(frame) && fs::exists(framePath(frame)); }
+
+void SequenceWriter::record(const nlohmann::json& line) {
+  // Opened per line: one small append per frame, and nothing is left open when a frame throws.
+  std::ofstream out(statsPath_, std::ios::app);
+  if (!out) throw Error(statsPath_ + ": cannot open the stats file for appending");
+  out << line.dump() << "\n";
+  out.flush();
+  if (!out) throw Error(statsPath_ + ": write failed");
+  records_[line.at("frame").get<int>()] = line;
+}
+
+SequenceSummary summarizeSequence(const std::map<int, nlohmann::json>& records) {
+  std::vector<double> wall, modelled, gather;
+  for (const auto& [frame, j] : records) {
+    wall.push_back(j.value("wall_s", 0.0));
+    modelled.push_back(j.value("modelled_parallel_s", 0.0));
+    gather.push_back(j.value("gather_s", 0.0));
+  }
+  return SequenceSummary{int(records.size()), median(wall), median(modelled), median(gather)};
+}
+
+}  // namespace kdswap

@@ -1,0 +1,65 @@
+// The bench grid: the paper's timing tables (Tables 1-8) measured over image sizes x node
+// counts x compositing strategies, K frames per cell with the view turning, median reported.
+// One VirtualCluster per (strategy, node count) is reused across sizes and frames, so data
+// distribution (paper Table 5) is paid once and never enters a cell.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/cluster/frame_request.h"
+#include "core/cluster/virtual_cluster.h"
+#include "core/volume/volume_source.h"
+
+namespace kdswap {
+
+struct BenchGridOptions {
+  std::vector<int> sizes{64, 128, 256, 512};  //!< square images, side in pixels
+  std::vector<int> nodes{1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
+  std::vector<std::string> strategies{"binary-swap"};
+  int frames = 5;                //!< measured frames per cell; one warm-up frame more is excluded
+  float degreesPerFrame = 1.0f;  //!< the azimuth turns this much between frames
+  FrameRequest base;             //!< view, transfer function, settings (width/height ignored)
+  ClusterOptions cluster;        //!< partition, threads, sparse (nodes and strategy ignored)
+};
+
+//! One cell: medians over the measured frames (maximum over nodes, as the paper reports).
+struct BenchCell {
+  std::string strategy;
+  int nodes = 0, width = 0, height = 0;
+  int frames = 0;                 //!< frames measured (fewer than asked if interrupted)
+  double renderSeconds = 0;       //!< FrameStats::renderMax
+  double compositeSeconds = 0;    //!< FrameStats::compositeMax
+  double wallSeconds = 0;         //!< whole frame on this machine
+  double modelledSeconds = 0;     //!< FrameStats::modelledParallelSeconds
+  double samples = 0;             //!< ray samples per frame
+  double samplesPerSecond = 0;    //!< samples / wall time
+  std::uint64_t bytesSent = 0;    //!< per frame, all nodes
+  std::uint64_t peakRssBytes = 0; //!< process peak so far
+  double distributeSeconds = 0;   //!< the cluster's one-off data distribution
+  double speedup = 0;             //!< modelled: P0 * T(P0) / T(P), P0 the grid's smallest P; 0 if unknown
+};
+
+struct BenchProgress {
+  int cellsDone = 0, cellsTotal = 0;
+  double elapsedSeconds = 0, remainingSeconds = 0;  //!< remaining: estimated from work done
+  std::string current;                                //!< "256x256, P=8, binary-swap"
+};
+
+struct BenchResult {
+  std::vector<BenchCell> cells;
+  bool interrupted = false;
+};
+
+//! Runs the grid. `progress` is called after every frame; `stop` (may be null) is polled after
+//! every frame: when set, the run ends and keeps every frame measured so far. Throws Error.
+BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& options,
+                         const std::function<void(const BenchProgress&)>& progress, const std::atomic<bool>* stop);
+
+//! Fills BenchCell::speedup from the modelled times (per strategy and image size).
+void computeSpeedups(std::vector<BenchCell>& cells);
+
+}  // namespace kdswap

@@ -1,0 +1,37 @@
+// Bench output: the paper-layout tables (rows: image size x {render, composite}; columns: node
+// count; maximum over nodes), the per-cell figures, and the CSV and JSON files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/bench/bench_grid.h"
+
+namespace kdswap {
+
+//! What was measured, for the JSON header and the printed title.
+struct BenchContext {
+  std::string commandLine;
+  std::string dataset;      //!< spec or file path
+  std::string volumeType;   //!< "uint8", "float32", ...
+  int dims[3] = {0, 0, 0};
+  float stepVoxels = 0;
+  bool shading = true;
+  int frames = 0;
+  float degreesPerFrame = 0;
+};
+
+//! Paper layout, one table per strategy: times in ms, maximum over nodes.
+std::string formatPaperLayout(const std::vector<BenchCell>& cells);
+//! Per cell: wall ms, Msamples/s, MB sent, modelled ms and modelled speedup, one table per strategy.
+std::string formatCellDetails(const std::vector<BenchCell>& cells);
+
+std::string benchCsv(const BenchContext& context, const std::vector<BenchCell>& cells);
+nlohmann::json benchJson(const BenchContext& context, const BenchResult& result);
+
+//! Writes `text` to `path` whole or not at all (temporary file, then rename). Throws Error.
+void writeTextFile(const std::string& path, const std::string& text);
+
+}  // namespace kdswap

@@ -1,0 +1,47 @@
+// Kernel micro benchmarks (`kdswap bench --micro`): ray-casting samples per second on one core,
+// `over` compositing throughput quoted against a plain copy of the same buffers, and
+// binary-swap compositing alone (synthetic full-frame partial images over an InprocNetwork).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace kdswap {
+
+struct RayCastFigure {
+  std::string dataType;  //!< "uint8", "uint16", "float32": the source data, before the float brick
+  bool shaded = false;
+  double samplesPerSecond = 0;  //!< one thread (tbb::task_arena(1)), median of the repeats
+  double samples = 0;           //!< per render
+};
+
+struct CompositeFigure {
+  int width = 0, height = 0;
+  double overSeconds = 0;   //!< compositeInto of two full images, one thread, median
+  double copySeconds = 0;   //!< memcpy of one image's bytes, one thread, median
+  double overPixelsPerSecond() const { return overSeconds > 0 ? width * double(height) / overSeconds : 0; }
+  double copyPixelsPerSecond() const { return copySeconds > 0 ? width * double(height) / copySeconds : 0; }
+};
+
+struct BinarySwapFigure {
+  int nodes = 0, width = 0, height = 0;
+  double compositeMaxSeconds = 0;  //!< max over nodes of compose time minus time suspended, median
+  double wallSeconds = 0;          //!< whole exchange on this machine's cores, median
+  double copySeconds = 0;          //!< memcpy of one full image, median
+};
+
+struct MicroOptions {
+  int volumeSize = 128;  //!< the procedural volume's side, voxels
+  int imageSize = 256;   //!< ray-casting image side
+  int repeats = 5;
+};
+
+std::vector<RayCastFigure> measureRayCasting(const MicroOptions& options);
+CompositeFigure measureOver(int width, int height, int repeats);
+BinarySwapFigure measureBinarySwap(int nodes, int width, int height, int repeats);
+
+//! The printed report of all three, with the honest caveats.
+std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeFigure& over,
+                        const BinarySwapFigure& swap, const MicroOptions& options);
+
+}  // namespace kdswap

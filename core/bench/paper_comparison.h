@@ -1,0 +1,16 @@
+// `kdswap bench --paper`: runs each sourced cell of the paper's tables with our stand-in data set
+// at the paper's size and prints our time beside the paper's, with the ratio (n/a when unknown).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+namespace kdswap {
+
+//! Runs every cell of paperCells() (`frames` measured frames each) and returns the printed table.
+//! `log` gets a line per cell as it starts; `stop` (may be null) ends the run after a frame.
+std::string runPaperComparison(int frames, const std::function<void(const std::string&)>& log,
+                               const std::atomic<bool>* stop);
+
+}  // namespace kdswap

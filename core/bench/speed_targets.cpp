@@ -1,0 +1,159 @@
+// Issue 6's speed targets: each measured with the bench grid (one cell) or the micro harness.
+#include "core/bench/speed_targets.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "core/bench/bench_grid.h"
+#include "core/bench/micro_bench.h"
+#include "core/bench/quantised_source.h"
+#include "core/transfer/presets.h"
+#include "core/util/error.h"
+#include "core/util/memory.h"
+#include "core/volume/datasets/dataset.h"
+#include "core/volume/reader.h"
+
+namespace kdswap {
+namespace {
+
+constexpr double kVoxelBytes = 16.0;  // float value + float3 gradient, per voxel
+
+struct CellSpec {
+  int nodes = 64, size = 512;
+  float step = 1.0f;
+  std::string strategy = "binary-swap";
+};
+
+BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, const std::atomic<bool>* stop,
+                  bool& interrupted) {
+  BenchGridOptions o;
+  o.sizes = {spec.size};
+  o.nodes = {spec.nodes};
+  o.strategies = {spec.strategy};
+  o.frames = frames;
+  o.base.settings.stepVoxels = spec.step;
+  o.base.settings.shading = true;
+  const VolumeInfo& info = source.info();
+  o.base.transfer = loadTransferFunction(info.preset.empty() ? "grayscale" : info.preset);
+  const BenchResult r = runBenchGrid(source, o, {}, stop);
+  interrupted = r.interrupted || r.cells.empty();
+  return r.cells.empty() ? BenchCell{} : r.cells.front();
+}
+
+std::string gridCommand(const std::string& data, const CellSpec& s, int frames, const char* extra = "") {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "kdswap bench %s --sizes %d --nodes %d --step %g --shading on --frames %d%s",
+                data.c_str(), s.size, s.nodes, double(s.step), frames, extra);
+  return buf;
+}
+
+std::string ms(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f ms", seconds * 1e3);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::function<void(const std::string&)>& log,
+                                         const std::atomic<bool>* stop) {
+  std::vector<SpeedTarget> out;
+  auto stopped = [&] { return stop && stop->load(); };
+  auto say = [&](const std::string& s) { if (log) log(s); };
+  bool interrupted = false;
+
+  // 1, 6, 4: phantom 256^3 as uint8, 512x512, step 1, shading; P=64 first so peak RSS is its own.
+  say("phantom:256 uint8, P=64 ...");
+  QuantisedSource phantom(openDataset("phantom:256"), 8);
+  const CellSpec p64;
+  const BenchCell a = measure(phantom, p64, o.frames, stop, interrupted);
+  const std::uint64_t rss = peakResidentBytes();
+  const std::string phantomData = "--dataset phantom:256 --quantise 8";
+  SpeedTarget t1{"phantom 256^3 uint8, 512x512, P=64, step 1, shading: wall per frame",
+                 gridCommand(phantomData, p64, o.frames), a.wallSeconds * 1e3, 29.0, "ms", false, !interrupted, ""};
+  out.push_back(t1);
+  const double budget = 1.25 * kVoxelBytes * 256.0 * 256.0 * 256.0;
+  out.push_back({"peak RSS with P=64, 256^3 (<= 1.25 x volume + gradients, 16 B/voxel)",
+                 gridCommand(phantomData, p64, o.frames) + "   (peak_rss_bytes in bench.json)", double(rss) / 1e6,
+                 budget / 1e6, "MB", false, !interrupted, "process peak (VmHWM), includes the program itself"});
+  if (stopped()) return out;
+
+  say("phantom:256 uint8, P=1 ...");
+  CellSpec p1 = p64;
+  p1.nodes = 1;
+  const BenchCell b = measure(phantom, p1, o.frames, stop, interrupted);
+  out.push_back({"P=64 wall <= 1.15 x P=1 wall (phantom 256^3 uint8, 512x512, step 1)",
+                 "kdswap bench " + phantomData + " --sizes 512 --nodes 1,64 --step 1 --frames " +
+                     std::to_string(o.frames),
+                 b.wallSeconds > 0 ? a.wallSeconds / b.wallSeconds : 0.0, 1.15, "x", false, !interrupted,
+                 "P=1 wall " + ms(b.wallSeconds)});
+  if (stopped()) return out;
+
+  say("turbulence:256, P=64 ...");
+  {
+    auto turbulence = openDataset("turbulence:256");
+    const BenchCell c = measure(*turbulence, p64, o.frames, stop, interrupted);
+    out.push_back({"turbulence 256^3, 512x512, P=64, step 1, shading: wall per frame",
+                   gridCommand("--dataset turbulence:256", p64, o.frames), c.wallSeconds * 1e3, 88.0, "ms", false,
+                   !interrupted, ""});
+  }
+  if (stopped()) return out;
+
+  say("CT head " + o.headPath + ", P=64 ...");
+  CellSpec head = p64;
+  head.step = 0.5f;
+  SpeedTarget t3{"CT head (headsq), 512x512, P=64, step 0.5, shading: wall per frame",
+                 gridCommand("--volume " + o.headPath, head, o.frames), 0, 42.0, "ms", false, false, ""};
+  if (std::filesystem::exists(o.headPath)) {
+    auto volume = openVolumeFile(o.headPath);
+    const BenchCell c = measure(*volume, head, o.frames, stop, interrupted);
+    t3.measured = c.wallSeconds * 1e3;
+    t3.ran = !interrupted;
+  } else {
+    t3.note = "not run: " + o.headPath + " not found (run from /work/main or pass --head FILE)";
+  }
+  out.push_back(t3);
+  if (stopped()) return out;
+
+  say("binary-swap alone, 1024x1024, P=8 ...");
+  const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, std::max(3, o.frames));
+  out.push_back({"binary-swap 1024^2, P=8: composite max over nodes <= 2 x copy", "kdswap bench --micro",
+                 swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0, 2.0, "x", false, true,
+                 "copy " + ms(swap.copySeconds) + " (one 16 MiB image)"});
+  out.push_back({"binary-swap 1024^2, P=8: composite max over nodes <= 16 ms", "kdswap bench --micro",
+                 swap.compositeMaxSeconds * 1e3, 16.0, "ms", false, true,
+                 "whole exchange on this machine: " + ms(swap.wallSeconds) + " wall"});
+  if (stopped()) return out;
+
+  say("default scene, 512x512, P=8 ...");
+  {
+    auto scene = openDataset(kDefaultDataset);
+    CellSpec d;
+    d.nodes = 8;
+    d.step = 0.5f;  // the default scene's settings (render's defaults)
+    const BenchCell c = measure(*scene, d, o.frames, stop, interrupted);
+    out.push_back({"default scene (phantom:128), 512x512, P=8: frames per second",
+                   "kdswap bench --sizes 512 --nodes 8 --frames " + std::to_string(o.frames),
+                   c.wallSeconds > 0 ? 1.0 / c.wallSeconds : 0.0, 20.0, "fps", true, !interrupted, ""});
+  }
+  return out;
+}
+
+std::string formatSpeedTargets(const std::vector<SpeedTarget>& targets) {
+  std::string out = "Speed targets (issue 6), medians of the measured frames:\n";
+  char buf[1024];
+  int met = 0, ran = 0;
+  for (const SpeedTarget& t : targets) {
+    const char* verdict = !t.ran ? "NOT RUN" : (t.met() ? "MET" : "MISSED");
+    ran += t.ran;
+    met += t.met();
+    std::snprintf(buf, sizeof buf, "  %-8s %s\n           measured %.2f %s, target %s %.2f %s%s%s\n           command: %s\n",
+                  verdict, t.name.c_str(), t.measured, t.unit.c_str(), t.atLeast ? ">=" : "<=", t.limit,
+                  t.unit.c_str(), t.note.empty() ? "" : "; ", t.note.c_str(), t.command.c_str());
+    out += buf;
+  }
+  std::snprintf(buf, sizeof buf, "%d of %zu targets met (%d run)\n", met, targets.size(), ran);
+  return out + buf;
+}
+
+}  // namespace kdswap

@@ -1,0 +1,36 @@
+// The speed targets of issue 6 (`kdswap bench --targets`): a short run that measures exactly
+// those figures and says MET or MISSED for each, with the command that measures it alone.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace kdswap {
+
+struct SpeedTarget {
+  std::string name;     //!< "phantom 256^3 uint8, 512x512, P=64, step 1, shading: wall"
+  std::string command;  //!< reproduces the measurement
+  double measured = 0, limit = 0;
+  std::string unit;     //!< "ms", "x", "MB", "fps"
+  bool atLeast = false; //!< true: met when measured >= limit; false: when measured <= limit
+  bool ran = false;     //!< false when skipped (missing file, interrupted)
+  std::string note;
+  bool met() const { return ran && (atLeast ? measured >= limit : measured <= limit); }
+};
+
+struct TargetOptions {
+  int frames = 5;
+  std::string headPath = "../shared/data/headsq.nhdr";  //!< the CT head of the third target
+};
+
+//! Runs every target in an order that keeps the peak-RSS figure honest (P=64 on 256^3 first).
+//! `log` receives a line as each target starts; `stop` (may be null) ends the run early, leaving
+//! the remaining targets not run. Throws Error only for failures other than a missing head file.
+std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& options, const std::function<void(const std::string&)>& log,
+                                         const std::atomic<bool>* stop);
+
+std::string formatSpeedTargets(const std::vector<SpeedTarget>& targets);
+
+}  // namespace kdswap

@@ -1,0 +1,63 @@
+// Raw volume files: layout from RawLayout, else from the name pattern NAME_WxHxD_TYPE.raw.
+#include "core/volume/readers/raw_reader.h"
+
+#include <filesystem>
+#include <regex>
+
+#include "core/util/error.h"
+#include "core/volume/readers/header_text.h"
+#include "core/volume/readers/stored_data.h"
+
+namespace kdswap {
+namespace {
+
+struct NamedLayout {
+  std::vector<std::int64_t> sizes;  // empty when the name has no WxHxD part
+  std::string type;
+};
+
+//! Reads "_WxHxD_TYPE" at the end of the file name's stem, if present.
+NamedLayout layoutFromName(const std::string& path) {
+  static const std::regex pattern(R"(_(\d+)x(\d+)x(\d+)_([a-z0-9]+)$)", std::regex::icase);
+  const std::string stem = std::filesystem::path(path).stem().string();
+  std::smatch m;
+  NamedLayout named;
+  if (!std::regex_search(stem, m, pattern)) return named;
+  for (int i = 1; i <= 3; ++i) {
+    const auto v = parseInteger(m[i].str());
+    if (!v) throw Error(path + ": dimensions in the name overflow: expected sizes from 2 to 2147483647");
+    named.sizes.push_back(*v);
+  }
+  named.type = lowercase(m[4].str());
+  return named;
+}
+
+}  // namespace
+
+bool RawReader::accepts(const std::string& path) const {
+  return lowercase(std::filesystem::path(path).extension().string()) == ".raw";
+}
+
+std::unique_ptr<VolumeSource> RawReader::open(const std::string& path, const RawLayout& layout) const {
+  const NamedLayout named = layoutFromName(path);
+  if ((!layout.dims && named.sizes.empty()) || (!layout.type && named.type.empty()))
+    throw Error(path + ": raw file layout unknown: expected dimensions and type on the command line or a name like "
+                "NAME_WxHxD_TYPE.raw (foot_256x256x256_uint8.raw)");
+  VolumeInfo info;
+  info.name = path;
+  info.dims = layout.dims ? dimsFromSizes({layout.dims->x, layout.dims->y, layout.dims->z}, path, "dimensions")
+                          : dimsFromSizes(named.sizes, path, "dimensions in the name");
+  if (layout.spacing) info.spacing = *layout.spacing;
+  const std::string typeName = layout.type ? *layout.type : named.type;
+  const auto type = parseScalarType(typeName);
+  if (!type) throw Error(path + ": type \"" + typeName + "\": unsupported (expected one of " + scalarTypeList() + ")");
+
+  StoredData data;
+  data.path = path;
+  data.type = *type;
+  data.bigEndian = layout.bigEndian.value_or(false);
+  data.offset = layout.headerBytes;
+  return openStoredData(std::move(info), data);
+}
+
+}  // namespace kdswap

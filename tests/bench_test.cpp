@@ -1,0 +1,133 @@
+// The bench's non-timing behaviour: medians, the shape of its CSV and JSON on a tiny grid, the
+// speedup chart's file. Speed itself is measured by `kdswap bench`, never asserted here.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/bench/bench_grid.h"
+#include "core/bench/bench_report.h"
+#include "core/bench/paper_tables.h"
+#include "core/bench/quantised_source.h"
+#include "core/bench/speedup_chart.h"
+#include "core/bench/statistics.h"
+#include "core/image/image_io.h"
+#include "core/transfer/presets.h"
+#include "core/util/error.h"
+#include "tests/test_support.h"
+
+using namespace kdswap;
+
+TEST_CASE("median of odd and even counts, unsorted, with an outlier") {
+  CHECK(median({}) == 0.0);
+  CHECK(median({3.0}) == 3.0);
+  CHECK(median({5.0, 1.0, 3.0}) == 3.0);
+  CHECK(median({4.0, 1.0, 3.0, 2.0}) == doctest::Approx(2.5));
+  CHECK(median({1.0, 1.1, 0.9, 1000.0, 1.05}) == doctest::Approx(1.05));
+}
+
+TEST_CASE("a one-cell grid yields one cell with every frame counted, and CSV and JSON of that shape") {
+  auto volume = test::makeBlobs(glm::ivec3(12, 10, 9));
+  BenchGridOptions o;
+  o.sizes = {16};
+  o.nodes = {2};
+  o.frames = 3;
+  o.base.transfer = loadTransferFunction("grayscale");
+  int calls = 0;
+  const BenchResult r = runBenchGrid(*volume, o, [&](const BenchProgress&) { ++calls; }, nullptr);
+  REQUIRE(r.cells.size() == 1);
+  CHECK_FALSE(r.interrupted);
+  CHECK(calls >= 4);  // warm-up + 3 frames, then the cell
+  const BenchCell& c = r.cells.front();
+  CHECK(c.nodes == 2);
+  CHECK(c.width == 16);
+  CHECK(c.frames == 3);
+  CHECK(c.speedup == doctest::Approx(2.0));  // P0 = P: P0 * T / T
+
+  BenchContext ctx;
+  ctx.commandLine = "kdswap bench --sizes 16 --nodes 2 --frames 3";
+  ctx.dataset = "blobs";
+  const std::string csv = benchCsv(ctx, r.cells);
+  std::istringstream lines(csv);
+  std::string header, row, extra;
+  std::getline(lines, header);
+  std::getline(lines, row);
+  CHECK_FALSE(std::getline(lines, extra));
+  const auto columns = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
+  CHECK(columns(header) == columns(row));
+  CHECK(header.rfind("dataset,strategy,nodes,width,height,frames,render_s,composite_s,wall_s", 0) == 0);
+
+  const nlohmann::json j = benchJson(ctx, r);
+  CHECK(j["command"] == ctx.commandLine);
+  REQUIRE(j["cells"].size() == 1);
+  for (const char* key : {"strategy", "nodes", "image", "frames", "render_s", "composite_s", "wall_s", "modelled_s",
+                          "speedup", "samples_per_s", "bytes_sent"})
+    CHECK_MESSAGE(j["cells"][0].contains(key), key);
+}
+
+TEST_CASE("a stop flag already set ends the grid with no cells and says it was interrupted") {
+  auto volume = test::makeBlobs(glm::ivec3(8));
+  BenchGridOptions o;
+  o.sizes = {8};
+  o.nodes = {1, 2};
+  o.base.transfer = loadTransferFunction("grayscale");
+  const std::atomic<bool> stop{true};
+  const BenchResult r = runBenchGrid(*volume, o, {}, &stop);
+  CHECK(r.interrupted);
+  CHECK(r.cells.empty());
+}
+
+TEST_CASE("speedup is T(1) / T(P) per strategy and size") {
+  std::vector<BenchCell> cells(3);
+  cells[0] = {"binary-swap", 1, 64, 64, 1, 0, 0, 0, 8.0};
+  cells[1] = {"binary-swap", 4, 64, 64, 1, 0, 0, 0, 2.0};
+  cells[2] = {"binary-tree", 4, 64, 64, 1, 0, 0, 0, 2.0};
+  computeSpeedups(cells);
+  CHECK(cells[0].speedup == doctest::Approx(1.0));
+  CHECK(cells[1].speedup == doctest::Approx(4.0));
+  CHECK(cells[2].speedup == doctest::Approx(4.0));  // its own baseline: P0 = 4
+}
+
+TEST_CASE("the speedup chart is written as a PNG of the requested size") {
+  std::vector<BenchCell> cells;
+  for (int size : {64, 128})
+    for (int p : {1, 2, 4, 8}) {
+      BenchCell c;
+      c.strategy = "binary-swap";
+      c.nodes = p;
+      c.width = c.height = size;
+      c.modelledSeconds = 1.0 / (0.8 * p + 0.2);
+      cells.push_back(c);
+    }
+  computeSpeedups(cells);
+  const Image chart = drawSpeedupChart(cells, "binary-swap", 320, 240);
+  CHECK(chart.width() == 320);
+  CHECK(chart.height() == 240);
+  const std::string path = (std::filesystem::temp_directory_path() / "kdswap_bench_test_speedup.png").string();
+  writeImage(path, chart);
+  const Image back = readImage(path);
+  CHECK(back.width() == 320);
+  CHECK(back.height() == 240);
+  std::filesystem::remove(path);
+  CHECK_THROWS_AS(drawSpeedupChart(cells, "no-such-strategy"), Error);
+}
+
+TEST_CASE("quantising to 8 bits leaves at most 256 distinct values") {
+  auto inner = test::makeBlobs(glm::ivec3(16));
+  std::vector<float> raw(16 * 16 * 16);
+  QuantisedSource q(std::move(inner), 8);
+  q.read(VoxelBox{glm::ivec3(0), glm::ivec3(16)}, raw.data());
+  std::sort(raw.begin(), raw.end());
+  CHECK(std::unique(raw.begin(), raw.end()) - raw.begin() <= 256);
+  CHECK(q.info().type == "uint8");
+}
+
+TEST_CASE("every paper figure carries its source") {
+  for (const PaperCell& c : paperCells()) {
+    CHECK_FALSE(c.source.empty());
+    CHECK(c.nodes > 0);
+  }
+}
