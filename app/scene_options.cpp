@@ -80,10 +80,12 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
 
 void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--nodes,-n", o.nodes, "Virtual nodes P (1..4096)")->capture_default_str();
-  cmd->add_option("--composite", o.composite, "Compositing strategy: binary-swap, binary-tree, sequential")
+  cmd->add_option("--composite", o.composite, "Compositing strategy: binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping")
       ->capture_default_str();
   cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
   cmd->add_flag("--sparse", o.sparse, "Send only the bounding rectangle of non-empty pixels");
+  cmd->add_option("--radices", o.radices,
+                  "radix-k: group size of each round, e.g. 4,2 (product = --nodes; default: prime factors of P)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = every core)")->capture_default_str();
   cmd->add_option("--stall-timeout", o.stallSeconds,
                   "Abort a frame when no message moves for this many seconds, naming who waits on whom")
@@ -155,6 +157,12 @@ Scene buildScene(const SceneOptions& o) {
   c.strategy = o.composite;
   c.partition = parsePartition(o.partition);
   c.composite.sparse = o.sparse;
+  if (!o.radices.empty())
+    for (double k : parseNumbers(o.radices, ',', "--radices")) {
+      if (k < 2 || k > kMaxNodes || k != std::floor(k))
+        throw Error("--radices \"" + o.radices + "\": each radix must be a whole number from 2 to " + std::to_string(kMaxNodes));
+      c.composite.radices.push_back(int(k));
+    }
   if (o.threads < 0 || o.threads > 1024) throw Error("--threads must be from 0 to 1024");
   c.threads = o.threads;
   if (!(o.stallSeconds > 0.0 && o.stallSeconds <= 86400.0)) throw Error("--stall-timeout must be between 0 and 86400 seconds");

@@ -31,6 +31,7 @@ struct SceneOptions {
   std::string composite = "binary-swap";
   std::string partition = "kd";
   bool sparse = false;
+  std::string radices;  //!< radix-k group size per round, "4,2,..."; empty = prime factors of P
   int threads = 0;
   double stallSeconds = 60.0;
   std::string injectFault;  //!< test-only: KIND:NODE[:MESSAGE[:DELAY_S]]

@@ -2,6 +2,8 @@
 // orbit equals the single-node render of its view, and a resumed run equals an uninterrupted one.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <filesystem>
@@ -29,7 +31,7 @@ struct Run {
 };
 
 fs::path workDir() {
-  const fs::path dir = fs::temp_directory_path() / "kdswap-animate-test";
+  const fs::path dir = fs::temp_directory_path() / ("kdswap-animate-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }

@@ -2,6 +2,8 @@
 // speedup chart's file. Speed itself is measured by `kdswap bench`, never asserted here.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <sstream>
@@ -106,7 +108,7 @@ TEST_CASE("the speedup chart is written as a PNG of the requested size") {
   const Image chart = drawSpeedupChart(cells, "binary-swap", 320, 240);
   CHECK(chart.width() == 320);
   CHECK(chart.height() == 240);
-  const std::string path = (std::filesystem::temp_directory_path() / "kdswap_bench_test_speedup.png").string();
+  const std::string path = (std::filesystem::temp_directory_path() / ("kdswap_bench_test_speedup_" + std::to_string(::getpid()) + ".png")).string();
   writeImage(path, chart);
   const Image back = readImage(path);
   CHECK(back.width() == 320);

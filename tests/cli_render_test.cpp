@@ -2,6 +2,8 @@
 // scripting interface (stats JSON, --verify) holds, and bad options give one line and exit 2.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <filesystem>
@@ -23,7 +25,7 @@ struct Run {
 };
 
 fs::path workDir() {
-  const fs::path dir = fs::temp_directory_path() / "kdswap-cli-test";
+  const fs::path dir = fs::temp_directory_path() / ("kdswap-cli-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }

@@ -1,6 +1,8 @@
 // Image files round-trip through OpenImageIO: PNG (8-bit) and EXR (float).
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "core/image/image_io.h"
@@ -21,7 +23,7 @@ Image gradientImage() {
 }
 
 std::filesystem::path tempPath(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "kdswap-image-io-test";
+  const auto dir = std::filesystem::temp_directory_path() / ("kdswap-image-io-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir / name;
 }

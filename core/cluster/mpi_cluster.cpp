@@ -147,8 +147,10 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, const VolumeSource* source, 
   if (source && request) {
     try {
       const VolumeInfo& info = source->info();
-      KdTree tree = KdTree::build(info.dims, net.nodes(), options.partition, options.slabAxis);
+      // The partition in the strategy's group shape, exactly as the in-process cluster builds it.
       std::unique_ptr<Strategy> strategy = createStrategy(options.strategy, options.composite);
+      KdTree tree = KdTree::build(info.dims, net.nodes(), options.partition, options.slabAxis,
+                                  strategy->treeShape(net.nodes()));
       const FramePlan plan(*request, tree, info.spacing, resolveValueRange(request->settings, info), *strategy);
       const FrameSetup setup{*source, std::move(tree), std::move(strategy), plan};
       std::vector<NodeState> states(std::size_t(net.nodesPerRank()));

@@ -67,12 +67,19 @@ int validatedNodes(int nodes) {
   return nodes;
 }
 
+//! The partition in the shape the strategy groups nodes in (radix-k, 2-3 swap and telescoping
+//! need subtrees other than pairs), so every group a strategy composites is a k-d subtree.
+KdTree buildTree(const VolumeInfo& info, const ClusterOptions& options) {
+  const TreeShape shape = createStrategy(options.strategy, options.composite)->treeShape(validatedNodes(options.nodes));
+  return KdTree::build(info.dims, options.nodes, options.partition, options.slabAxis, shape);
+}
+
 }  // namespace
 
 VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions& options)
     : options_(options),
       info_(source.info()),
-      tree_(KdTree::build(info_.dims, validatedNodes(options.nodes), options.partition, options.slabAxis)),
+      tree_(buildTree(info_, options)),
       strategy_(createStrategy(options.strategy, options.composite)),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
       network_(options.nodes),

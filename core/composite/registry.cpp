@@ -1,12 +1,17 @@
 // The only list of compositing strategies (IceT's select.c, pbrt's dispatch).
 #include "core/composite/registry.h"
 
+#include <algorithm>
 #include <functional>
-#include <map>
+#include <utility>
 
 #include "core/composite/binary_swap.h"
 #include "core/composite/binary_tree.h"
+#include "core/composite/direct_send.h"
+#include "core/composite/radix_k.h"
 #include "core/composite/sequential.h"
+#include "core/composite/telescoping.h"
+#include "core/composite/two_three_swap.h"
 #include "core/util/error.h"
 
 namespace kdswap {
@@ -19,11 +24,16 @@ Factory make() {
   return [](const CompositeOptions& o) { return std::make_unique<T>(o); };
 }
 
-const std::map<std::string, Factory>& factories() {
-  static const std::map<std::string, Factory> list = {
+// In the order listed to users: the paper's strategy and its two baselines, then the later ones.
+const std::vector<std::pair<std::string, Factory>>& factories() {
+  static const std::vector<std::pair<std::string, Factory>> list = {
       {"binary-swap", make<BinarySwap>()},
       {"binary-tree", make<BinaryTree>()},
       {"sequential", make<Sequential>()},
+      {"direct-send", make<DirectSend>()},
+      {"radix-k", make<RadixK>()},
+      {"2-3-swap", make<TwoThreeSwap>()},
+      {"telescoping", make<Telescoping>()},
   };
   return list;
 }
@@ -37,8 +47,9 @@ std::vector<std::string> strategyNames() {
 }
 
 std::unique_ptr<Strategy> createStrategy(const std::string& name, const CompositeOptions& options) {
-  auto it = factories().find(name);
-  if (it == factories().end()) {
+  const auto& list = factories();
+  auto it = std::find_if(list.begin(), list.end(), [&](const auto& entry) { return entry.first == name; });
+  if (it == list.end()) {
     std::string valid;
     for (const std::string& n : strategyNames()) valid += (valid.empty() ? "" : ", ") + n;
     throw Error("compositing strategy \"" + name + "\": unknown (valid: " + valid + ")");

@@ -47,6 +47,10 @@ class Strategy {
   //! returned tiles of all nodes partition `frame`.
   virtual Tile compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
                        PhaseObserver& phases) const = 0;
+  //! The k-d tree shape whose subtrees are this strategy's groups for `nodes` nodes (the cluster
+  //! builds the partition with it); empty = the binary tree with folded extra nodes. Throws
+  //! kdswap::Error if the strategy's options cannot serve `nodes`.
+  virtual TreeShape treeShape(int /*nodes*/) const { return {}; }
 };
 
 }  // namespace kdswap

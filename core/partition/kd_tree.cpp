@@ -1,8 +1,10 @@
 // k-d partition and its front-to-back traversal (Ma et al. 1993, sections 3.2 and 3.4).
 #include "core/partition/kd_tree.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 
 #include "core/camera/camera.h"
 #include "core/util/check.h"
@@ -18,7 +20,99 @@ PartitionKind parsePartition(const std::string& text) {
 
 std::string toString(PartitionKind kind) { return kind == PartitionKind::KdTree ? "kd" : "slab"; }
 
-KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis) {
+namespace {
+
+std::string describeShape(const TreeShape& shape) {
+  std::string text;
+  for (std::size_t i = 0; i < shape.size() && i < 16; ++i) {
+    if (i) text += ',';
+    text += std::to_string(shape[i]);
+  }
+  return text + (shape.size() > 16 ? ",..." : "");
+}
+
+//! For every entry of a preorder shape: the leaves below it and the index just past its subtree.
+//! Throws if the shape is not exactly one complete tree.
+void measureShape(const TreeShape& shape, std::vector<int>& leaves, std::vector<std::size_t>& ends) {
+  leaves.assign(shape.size(), 0);
+  ends.assign(shape.size(), 0);
+  const auto bad = [&](const std::string& why) { return Error("tree shape {" + describeShape(shape) + "}: " + why); };
+  std::function<std::size_t(std::size_t)> measure = [&](std::size_t at) -> std::size_t {
+    if (at >= shape.size()) throw bad("ends inside a node's children");
+    if (shape[at] < 0) throw bad("a negative number of children");
+    std::size_t next = at + 1;
+    leaves[at] = shape[at] == 0 ? 1 : 0;
+    for (int c = 0; c < shape[at]; ++c) {
+      const std::size_t child = next;
+      next = measure(child);
+      leaves[at] += leaves[child];
+    }
+    ends[at] = next;
+    return next;
+  };
+  if (shape.empty()) throw bad("empty");
+  if (measure(0) != shape.size()) throw bad("entries left over after the root's subtree");
+}
+
+//! Cuts `box` into one slab per entry of `counts` along one axis, each as thick as its share of
+//! the ranks; fills `planes` (non-decreasing) and returns the axis. When the box is at least one
+//! cell per slab thick every slab gets a cell; otherwise the first slabs get one cell each and the
+//! rest are empty (as the binary split leaves its high side empty).
+int cutSlabs(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, const std::vector<int>& counts,
+             std::vector<int>& planes) {
+  const int k = int(counts.size());
+  int axis = kind == PartitionKind::Slab ? slabAxis : depth % 3;
+  if (kind == PartitionKind::KdTree) {
+    int thickest = axis;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const int a = (depth + attempt) % 3;
+      if (box.hi[a] - box.lo[a] >= k) {
+        thickest = a;
+        break;
+      }
+      if (box.hi[a] - box.lo[a] > box.hi[thickest] - box.lo[thickest]) thickest = a;
+    }
+    axis = thickest;
+  }
+  const int lo = box.lo[axis], hi = std::max(box.lo[axis], box.hi[axis]), extent = hi - lo;
+  int total = 0;
+  for (int c : counts) total += c;
+  planes.clear();
+  int before = 0, previous = lo;
+  for (int j = 1; j < k; ++j) {
+    before += counts[std::size_t(j - 1)];
+    int plane = lo + int(std::lround(double(extent) * before / total));
+    plane = extent >= k ? std::clamp(plane, previous + 1, hi - (k - j)) : std::min(previous + 1, hi);
+    planes.push_back(plane);
+    previous = plane;
+  }
+  return axis;
+}
+
+}  // namespace
+
+TreeShape levelShape(const std::vector<int>& arity) {
+  TreeShape shape;
+  std::function<void(std::size_t)> emit = [&](std::size_t level) {
+    if (level == arity.size()) {
+      shape.push_back(0);
+      return;
+    }
+    shape.push_back(arity[level]);
+    for (int c = 0; c < arity[level]; ++c) emit(level + 1);
+  };
+  emit(0);
+  return shape;
+}
+
+int shapeLeaves(const TreeShape& shape) {
+  std::vector<int> leaves;
+  std::vector<std::size_t> ends;
+  measureShape(shape, leaves, ends);
+  return leaves[0];
+}
+
+KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis, const TreeShape& shape) {
   KDSWAP_CHECK_GE(ranks, 1);
   KdTree tree;
   tree.dims_ = dims;
@@ -27,9 +121,57 @@ KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int 
   tree.leafOf_.assign(ranks, -1);
   tree.nodes_.reserve(std::size_t(2 * ranks));
   const VoxelBox domain{glm::ivec3(0), dims - 1};
-  tree.buildNode(domain, 0, tree.virtualLeaves_, 0, kind, slabAxis);
+  if (shape.empty()) {
+    tree.buildNode(domain, 0, tree.virtualLeaves_, 0, kind, slabAxis);
+  } else {
+    std::vector<int> leaves;
+    std::vector<std::size_t> ends;
+    measureShape(shape, leaves, ends);
+    if (leaves[0] != ranks)
+      throw Error("tree shape {" + describeShape(shape) + "}: " + std::to_string(leaves[0]) + " leaves for " +
+                  std::to_string(ranks) + " nodes");
+    std::size_t cursor = 0;
+    int nextRank = 0;
+    tree.buildShaped(domain, shape, leaves, ends, cursor, nextRank, 0, kind, slabAxis);
+  }
   for (int r = 0; r < ranks; ++r) KDSWAP_CHECK_GE(tree.leafOf_[r], 0);
   return tree;
+}
+
+// One node of a shaped tree: `cursor` is its preorder index on entry and just past its subtree
+// on return. Leaves take ranks in preorder, so every subtree holds consecutive ranks.
+int KdTree::buildShaped(const VoxelBox& box, const TreeShape& shape, const std::vector<int>& leaves,
+                        const std::vector<std::size_t>& ends, std::size_t& cursor, int& nextRank, int depth,
+                        PartitionKind kind, int slabAxis) {
+  const int k = shape[cursor++];
+  if (k == 0) return leafNode(box, nextRank++);
+  const int index = int(nodes_.size());
+  nodes_.emplace_back();
+  nodes_[index].box = box;
+
+  // Leaf counts of the children; each child's subtree ends where the next child starts.
+  std::vector<int> counts;
+  for (std::size_t c = 0, child = cursor; c < std::size_t(k); ++c, child = ends[child]) counts.push_back(leaves[child]);
+  std::vector<int> planes;
+  const int axis = cutSlabs(box, depth, kind, slabAxis, counts, planes);
+
+  std::vector<int> children;
+  for (int c = 0; c < k; ++c) {
+    VoxelBox slab = box;
+    if (c > 0) slab.lo[axis] = planes[std::size_t(c - 1)];
+    if (c + 1 < k) slab.hi[axis] = planes[std::size_t(c)];
+    children.push_back(buildShaped(slab, shape, leaves, ends, cursor, nextRank, depth + 1, kind, slabAxis));
+  }
+  KdNode& n = nodes_[index];
+  n.axis = axis;
+  if (k == 2) {
+    n.plane = planes[0];
+    n.low = children[0];
+    n.high = children[1];
+  }
+  n.children = std::move(children);
+  n.planes = std::move(planes);
+  return index;
 }
 
 int KdTree::leafNode(const VoxelBox& box, int rank) {
@@ -96,6 +238,8 @@ int KdTree::buildNode(const VoxelBox& box, int firstLeaf, int leafCount, int dep
   }
   nodes_[index].low = low;
   nodes_[index].high = high;
+  nodes_[index].children = {low, high};
+  nodes_[index].planes = {nodes_[index].plane};
   return index;
 }
 
@@ -111,17 +255,24 @@ VisibilityOrder KdTree::order(const Camera& camera, const glm::vec3& spacing) co
       result.frontToBack.push_back(n.rank);
       continue;
     }
-    // The low side is in front when the eye is below the plane (perspective) or when the rays
-    // travel toward increasing coordinates (orthographic). Ties (rays parallel to the plane) never
-    // cross it, so either order is right.
-    bool lowFirst;
+    // The slab holding the eye comes first (perspective), then the slabs on either side walking
+    // away from it: a ray crosses the parallel planes in one direction only, so any interleaving of
+    // the two sides is valid. Orthographic: the first slab is the one the rays enter, the low end
+    // when they travel toward increasing coordinates. Ties (rays parallel to the planes) never
+    // cross them, so either order is right. For two children this is the low side first when the
+    // eye is below the plane.
+    const int k = int(n.children.size());
+    int first;
     if (camera.orthographic()) {
-      lowFirst = camera.forward()[n.axis] >= 0.0f;
+      first = camera.forward()[n.axis] >= 0.0f ? 0 : k - 1;
     } else {
-      lowFirst = camera.eye()[n.axis] < float(n.plane) * spacing[n.axis];
+      first = 0;
+      while (first < k - 1 && camera.eye()[n.axis] >= float(n.planes[std::size_t(first)]) * spacing[n.axis]) ++first;
     }
-    stack.push_back(lowFirst ? n.high : n.low);
-    stack.push_back(lowFirst ? n.low : n.high);
+    // Pushed in reverse: upper side farthest first, then the lower side, then the eye's slab on top.
+    for (int c = k - 1; c > first; --c) stack.push_back(n.children[std::size_t(c)]);
+    for (int c = 0; c < first; ++c) stack.push_back(n.children[std::size_t(c)]);
+    stack.push_back(n.children[std::size_t(first)]);
   }
   result.position.assign(std::size_t(ranks_), -1);
   for (int i = 0; i < ranks_; ++i) result.position[result.frontToBack[i]] = i;

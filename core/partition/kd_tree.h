@@ -7,6 +7,11 @@
 // sibling (IceT's folding convention). Binary-swap's extra ranks fold into their siblings, so every
 // group a strategy composites is a subtree. Planes split space in proportion to the node counts
 // on each side, so every node gets about the same number of voxels.
+//
+// Other shapes (radix-k, 2-3 swap, telescoping group nodes in threes, fours or unequal halves):
+// KdTree::build takes a TreeShape, and a node with k children is cut into k slabs along one axis,
+// each as thick as its share of the ranks. A ray crosses parallel planes in one direction only, so
+// the slabs are visited from the one holding the eye (or the near end, orthographic) outwards.
 #pragma once
 
 #include <memory>
@@ -29,9 +34,21 @@ struct KdNode {
   VoxelBox box;       //!< region owned by this subtree
   int axis = -1;      //!< split axis, -1 for a leaf
   int plane = 0;      //!< split coordinate (voxel index); low child owns < plane, high child >= plane
-  int low = -1, high = -1;  //!< children (indices into nodes()), -1 for a leaf
+  int low = -1, high = -1;  //!< children (indices into nodes()); -1 for a leaf and for k > 2 children
   int rank = -1;      //!< node (virtual processor) owning this leaf's brick
+  std::vector<int> children;  //!< all children, in increasing coordinate along `axis` (any k)
+  std::vector<int> planes;    //!< planes[i] separates children[i] and children[i + 1]
 };
+
+//! A tree shape: the number of children of every tree node in preorder, 0 for a leaf; leaves take
+//! ranks 0, 1, 2, ... in that order, so every subtree holds consecutive ranks. Empty: the binary
+//! tree with folded extra ranks described above. Example: {3, 0, 2, 0, 0, 0} is a root with three
+//! children, of which the second has two leaves (ranks 1 and 2).
+using TreeShape = std::vector<int>;
+//! The shape whose level l (from the root) splits every node into arity[l] children.
+TreeShape levelShape(const std::vector<int>& arity);
+//! Number of leaves of a shape; throws kdswap::Error if `shape` is not one complete tree.
+int shapeLeaves(const TreeShape& shape);
 
 //! Front-to-back order of the ranks for one view. Any subtree of the k-d tree is contiguous in
 //! this order, so comparing two members compares their subtrees.
@@ -43,8 +60,10 @@ struct VisibilityOrder {
 
 class KdTree {
  public:
-  //! `slabAxis` is used by PartitionKind::Slab (0, 1 or 2).
-  static KdTree build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis = 2);
+  //! `slabAxis` is used by PartitionKind::Slab (0, 1 or 2). A non-empty `shape` must have exactly
+  //! `ranks` leaves.
+  static KdTree build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis = 2,
+                      const TreeShape& shape = {});
 
   int ranks() const { return ranks_; }
   const glm::ivec3& dims() const { return dims_; }
@@ -60,6 +79,9 @@ class KdTree {
   int leafNode(const VoxelBox& box, int rank);
   int splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, int lowCount, int highCount,
                 VoxelBox& lowBox, VoxelBox& highBox);
+  int buildShaped(const VoxelBox& box, const TreeShape& shape, const std::vector<int>& leaves,
+                  const std::vector<std::size_t>& ends, std::size_t& cursor, int& nextRank, int depth, PartitionKind kind,
+                  int slabAxis);
 
   glm::ivec3 dims_{0};
   int ranks_ = 0;

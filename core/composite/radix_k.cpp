@@ -1,0 +1,129 @@
+// Radix-k compositing (Peterka et al. 2009, "A configurable algorithm for parallel image
+// compositing applications"); any P = k_0 * k_1 * ... * k_{n-1}.
+//
+// Round i groups the nodes into groups of k_i. With stride s_i = k_0 * ... * k_{i-1}, node r has
+// digit d = (r / s_i) % k_i, and its group is the k_i nodes that differ from r in that digit only:
+// base + j * s_i, j = 0 .. k_i - 1. All members of a group hold the same region (their earlier
+// digits agree); it is cut into k_i parts (across x in even rounds, y in odd ones), member j keeps
+// part j, sends part m to member m and composites the k_i images of its part in visibility order.
+// After n rounds each node owns 1/P of the frame. With every k_i = 2 this is binary swap, node for
+// node; with one round of k_0 = P it is direct-send.
+//
+// Ordering: a group's images must come from sibling subtrees of the k-d tree, or "in front of"
+// between two members would not describe their whole images. So the partition is built from the
+// radices (treeShape): the root splits into k_{n-1} children, each of those into k_{n-2}, ..., the
+// leaves' parents into k_0. Leaves are ranks in depth-first order, so rank r's digit i says which
+// child it lies in at depth n - 1 - i, and round i's groups are exactly the subtrees at that depth.
+#include "core/composite/radix_k.h"
+
+#include <algorithm>
+
+#include "core/composite/image_message.h"
+#include "core/util/error.h"
+
+namespace kdswap {
+namespace {
+
+constexpr int kRadixTag = 600;  // + round
+
+std::vector<int> primeFactors(int n) {
+  std::vector<int> factors;
+  for (int f = 2; f * f <= n; ++f)
+    while (n % f == 0) factors.push_back(f), n /= f;
+  if (n > 1) factors.push_back(n);
+  return factors;
+}
+
+std::string joined(const std::vector<int>& values) {
+  std::string text;
+  for (int v : values) {
+    if (!text.empty()) text += ',';
+    text += std::to_string(v);
+  }
+  return text;
+}
+
+//! Part `part` of `parts` equal cuts of `region` across x (axis 0) or y (axis 1). Parts may be
+//! empty when the region is thinner than `parts` pixels; their owners end with empty tiles.
+Rect partOf(const Rect& region, int axis, int part, int parts) {
+  const auto cut = [&](int length, int i) { return int(std::int64_t(length) * i / parts); };
+  Rect r = region;
+  if (axis == 0) {
+    r.x = region.x + cut(region.w, part);
+    r.w = region.x + cut(region.w, part + 1) - r.x;
+  } else {
+    r.y = region.y + cut(region.h, part);
+    r.h = region.y + cut(region.h, part + 1) - r.y;
+  }
+  return r;
+}
+
+}  // namespace
+
+std::vector<int> RadixK::radices(int nodes) const {
+  if (options_.radices.empty()) return primeFactors(nodes);
+  long long product = 1;
+  bool valid = true;
+  for (int k : options_.radices) {
+    valid = valid && k >= 2;
+    product = std::min<long long>(product * std::max(k, 1), 1LL << 40);
+  }
+  if (!valid || product != nodes) {
+    const std::vector<int> example = primeFactors(nodes);
+    throw Error("radix-k: radices " + joined(options_.radices) + " for " + std::to_string(nodes) +
+                " nodes: each must be >= 2 and their product must be " + std::to_string(nodes) + " (e.g. " +
+                (example.empty() ? std::string("none, for 1 node") : "--radices " + joined(example)) + ")");
+  }
+  return options_.radices;
+}
+
+TreeShape RadixK::treeShape(int nodes) const {
+  std::vector<int> fromRoot = radices(nodes);
+  std::reverse(fromRoot.begin(), fromRoot.end());
+  return levelShape(fromRoot);
+}
+
+Tile RadixK::compose(Image image, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+                     PhaseObserver& phases) const {
+  const int me = comm.rank();
+  const std::vector<int> rounds = radices(comm.size());
+  auto prepare = [&](const Image& part) { return options_.sparse ? trimToContent(part) : part; };
+  Rect region = frame;
+
+  for (int round = 0, stride = 1; round < int(rounds.size()); stride *= rounds[std::size_t(round)], ++round) {
+    const int k = rounds[std::size_t(round)];
+    const int digit = (me / stride) % k, base = me - digit * stride;
+    const int axis = round % 2;
+    phases.beginPhase("radix-" + std::to_string(k), base + ((digit + 1) % k) * stride);
+
+    // Send every other member its part (staggered, as in direct-send), keep ours.
+    for (int step = 1; step < k; ++step) {
+      const int j = (digit + step) % k;
+      comm.send(base + j * stride, kRadixTag + round, imageToMessage(prepare(image.crop(partOf(region, axis, j, k)))));
+    }
+    const Rect keep = partOf(region, axis, digit, k);
+    Image own = image.crop(keep);
+    image = Image{};  // the rest of the region is no longer ours
+
+    // The members' images of our part, front to back: what is accumulated lies in front.
+    std::vector<int> members(static_cast<std::size_t>(k));
+    for (int j = 0; j < k; ++j) members[std::size_t(j)] = base + j * stride;
+    std::sort(members.begin(), members.end(), [&](int a, int b) { return order.inFront(a, b); });
+    std::int64_t pixels = 0;
+    for (int member : members) {
+      Image piece;
+      if (member == me) {
+        piece = std::move(own);
+      } else {
+        Message in = comm.receive(member, kRadixTag + round);
+        piece = imageFromMessage(in);
+      }
+      image = mergeImages(std::move(image), std::move(piece), false, pixels);
+    }
+    region = keep;
+    phases.endPhase(region, image, pixels);
+  }
+  return Tile{region, std::move(image)};
+}
+
+}  // namespace kdswap
