@@ -99,13 +99,17 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   const float* specular = specular_.data();
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
+  std::size_t lastJumpedCell = std::size_t(-1);
   for (long k = kBegin; k <= kEnd; ++k) {
     const float t = (float(k) + phase) * step;
     const glm::vec3 p = o + d * t;
     // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
     if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;
     const glm::ivec3 c = (glm::ivec3(int(p.x), int(p.y), int(p.z)) >> Brick::kCellShift) - cellLo;
-    if (cellEmpty_[(std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x]) {
+    const std::size_t cellIndex = (std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x;
+    if (cellEmpty_[cellIndex]) {
+      if (cellIndex == lastJumpedCell) continue;  // landed just short of the exit: step on
+      lastJumpedCell = cellIndex;
       // Jump to just before the ray leaves this empty cell; samples there are all invisible.
       const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo) << Brick::kCellShift), lo);
       const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + 1) << Brick::kCellShift), hi);
