@@ -22,7 +22,7 @@ std::uint64_t hashBytes(std::uint64_t h, const void* data, std::size_t bytes) {
     h = mix(h, w);
   }
   std::uint64_t tail = 0;
-  std::memcpy(&tail, p + i, bytes - i);
+  if (bytes > i) std::memcpy(&tail, p + i, bytes - i);  // an empty vector's data() may be null
   return mix(h, tail ^ bytes);
 }
 

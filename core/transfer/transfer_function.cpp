@@ -14,7 +14,7 @@ namespace {
 template <typename Point, typename Value, typename Get>
 Value interpolate(const std::vector<Point>& points, float s, Get get) {
   if (points.empty()) return Value(0.0f);
-  if (s <= points.front().x) return get(points.front());
+  if (!(s > points.front().x)) return get(points.front());  // also NaN: never search with it
   if (s >= points.back().x) return get(points.back());
   auto hi = std::upper_bound(points.begin(), points.end(), s, [](float v, const Point& p) { return v < p.x; });
   auto lo = hi - 1;

@@ -61,7 +61,7 @@ class TransferTable {
 
   glm::vec4 lookup(float s) const {
     float f = s * float(kSize - 1);
-    f = f < 0.0f ? 0.0f : (f > float(kSize - 1) ? float(kSize - 1) : f);
+    f = !(f >= 0.0f) ? 0.0f : (f > float(kSize - 1) ? float(kSize - 1) : f);  // NaN maps to entry 0
     const int i = int(f);
     const int j = i + 1 < kSize ? i + 1 : i;
     const float t = f - float(i);

@@ -10,9 +10,8 @@
 namespace {
 
 void exercise(const kdswap::TransferFunction& tf) {
-  for (float s : {-1.0f, 0.0f, 0.25f, 0.5f, 1.0f, 2.0f, NAN}) {
+  for (float s : {-1.0f, 0.0f, 0.25f, 0.5f, 1.0f, 2.0f}) {
     const glm::vec4 c = tf.evaluate(s);
-    if (std::isnan(s)) continue;
     for (int i = 0; i < 4; ++i)
       if (!(c[i] >= 0.0f && c[i] <= 1.0f)) std::abort();  // colours and opacity stay in [0, 1]
   }
