@@ -18,30 +18,15 @@
 
 #include "core/util/error.h"
 #include "core/volume/reader.h"
+#include "test_files.h"
 
 namespace kdswap {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path = fs::temp_directory_path() / ("kdswap_bad_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);  // best effort: a leftover temp folder must not fail the test
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-void writeFile(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
+using test::TempDir;
+using test::writeFile;
 
 std::string gzipBytes(const std::string& raw) {
   z_stream zs{};

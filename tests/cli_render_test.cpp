@@ -14,15 +14,12 @@
 
 #include "core/image/image_io.h"
 
+#include "test_files.h"
+
 using namespace kdswap;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Run {
-  int code;
-  std::string err;
-};
 
 fs::path workDir() {
   const fs::path dir = fs::temp_directory_path() / ("kdswap-cli-test-" + std::to_string(::getpid()));
@@ -30,15 +27,8 @@ fs::path workDir() {
   return dir;
 }
 
-Run runKdswap(const std::string& args) {
-  const fs::path err = workDir() / "stderr.txt";
-  const std::string command = std::string(KDSWAP_BINARY_DIR) + "/app/kdswap " + args + " > /dev/null 2> " + err.string();
-  const int status = std::system(command.c_str());
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
+using test::Run;
+using test::runKdswap;
 
 int lineCount(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 

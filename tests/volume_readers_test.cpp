@@ -25,31 +25,15 @@
 
 #include "core/util/error.h"
 #include "core/volume/reader.h"
+#include "test_files.h"
 
 namespace kdswap {
 namespace {
 
 namespace fs = std::filesystem;
 
-//! A fresh folder under the system temp dir, removed with everything in it at the end.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path = fs::temp_directory_path() / ("kdswap_readers_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);  // best effort: a leftover temp folder must not fail the test
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-void writeFile(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
+using test::TempDir;
+using test::writeFile;
 
 std::string deflateBytes(const std::string& raw, bool gzip) {
   z_stream zs{};
