@@ -3,7 +3,10 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "core/transfer/transfer_function.h"
+#include "core/util/error.h"
 
 using namespace kdswap;
 
@@ -23,4 +26,20 @@ TEST_CASE("a transfer function maps NaN to its first entry instead of reading ou
   CHECK(v.a == doctest::Approx(0.1f));
   const TransferTable table(tf, 1.0f);
   CHECK(table.lookup(std::nanf("")).a == doctest::Approx(0.1f));
+}
+
+TEST_CASE("a ParaView colour-map export loads as a transfer function, rescaled to [0, 1]") {
+  const nlohmann::json paraview = nlohmann::json::parse(R"([{
+    "Name": "Cool to Warm", "ColorSpace": "Diverging",
+    "RGBPoints": [-100, 0.23, 0.299, 0.754, 0, 0.865, 0.865, 0.865, 300, 0.706, 0.016, 0.15],
+    "Points": [-100, 0, 0.5, 0, 300, 0.8, 0.5, 0]
+  }])");
+  const TransferFunction tf = TransferFunction::fromJson(paraview, "cool-to-warm.json");
+  CHECK(tf.name() == "Cool to Warm");
+  REQUIRE(tf.colors().size() == 3);
+  CHECK(tf.colors()[1].x == doctest::Approx(0.25f));  // 0 in [-100, 300]
+  CHECK(tf.evaluate(0.0f).b == doctest::Approx(0.754f));
+  CHECK(tf.evaluate(1.0f).a == doctest::Approx(0.8f));
+  CHECK(tf.evaluate(0.5f).a == doctest::Approx(0.4f));
+  CHECK_THROWS_AS(TransferFunction::fromJson(nlohmann::json::parse(R"({"RGBPoints": [0, 1, 1]})"), "bad.json"), Error);
 }
