@@ -28,19 +28,7 @@ namespace fs = std::filesystem;
 using test::TempDir;
 using test::writeFile;
 
-std::string gzipBytes(const std::string& raw) {
-  z_stream zs{};
-  REQUIRE(deflateInit2(&zs, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) == Z_OK);
-  std::string out(deflateBound(&zs, uLong(raw.size())), '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
-  zs.avail_in = uInt(raw.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = uInt(out.size());
-  REQUIRE(deflate(&zs, Z_FINISH) == Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
+std::string gzipBytes(const std::string& raw) { return test::deflateBytes(raw, true); }
 
 //! Opens `path` expecting kdswap::Error; checks its message is one line that names the file
 //! and contains `problem`.

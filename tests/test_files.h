@@ -12,6 +12,9 @@
 #include <sstream>
 #include <string>
 
+#include <doctest/doctest.h>
+#include <zlib.h>
+
 namespace kdswap::test {
 
 //! A fresh folder under the system temp dir (unique per process and call), removed at the end.
@@ -33,6 +36,21 @@ struct TempDir {
 inline void writeFile(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+//! `raw` compressed with zlib: gzip framing when `gzip`, else a plain zlib stream.
+inline std::string deflateBytes(const std::string& raw, bool gzip) {
+  z_stream zs{};
+  REQUIRE(deflateInit2(&zs, 6, Z_DEFLATED, gzip ? 15 + 16 : 15, 8, Z_DEFAULT_STRATEGY) == Z_OK);
+  std::string out(deflateBound(&zs, uLong(raw.size())), '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
+  zs.avail_in = uInt(raw.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = uInt(out.size());
+  REQUIRE(deflate(&zs, Z_FINISH) == Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
 }
 
 struct Run {

@@ -43,20 +43,6 @@ std::string joined(const std::vector<int>& values) {
   return text;
 }
 
-//! Part `part` of `parts` equal cuts of `region` across x (axis 0) or y (axis 1). Parts may be
-//! empty when the region is thinner than `parts` pixels; their owners end with empty tiles.
-Rect partOf(const Rect& region, int axis, int part, int parts) {
-  const auto cut = [&](int length, int i) { return int(std::int64_t(length) * i / parts); };
-  Rect r = region;
-  if (axis == 0) {
-    r.x = region.x + cut(region.w, part);
-    r.w = region.x + cut(region.w, part + 1) - r.x;
-  } else {
-    r.y = region.y + cut(region.h, part);
-    r.h = region.y + cut(region.h, part + 1) - r.y;
-  }
-  return r;
-}
 
 }  // namespace
 
@@ -99,9 +85,9 @@ Tile RadixK::compose(Image image, const Rect& frame, const VisibilityOrder& orde
     // Send every other member its part (staggered, as in direct-send), keep ours.
     for (int step = 1; step < k; ++step) {
       const int j = (digit + step) % k;
-      comm.send(base + j * stride, kRadixTag + round, imageToMessage(prepare(image.crop(partOf(region, axis, j, k)))));
+      comm.send(base + j * stride, kRadixTag + round, imageToMessage(prepare(image.crop(sliceOf(region, axis, j, k)))));
     }
-    const Rect keep = partOf(region, axis, digit, k);
+    const Rect keep = sliceOf(region, axis, digit, k);
     Image own = image.crop(keep);
     image = Image{};  // the rest of the region is no longer ours
 

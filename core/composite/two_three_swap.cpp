@@ -86,19 +86,6 @@ void emitShape(int n, int depth, TreeShape& shape) {
   for (int c : sizes) emitShape(c, depth - 1, shape);
 }
 
-//! Band `index` of `count` equal bands of `frame`, stacked along `axis` (0: columns, 1: rows).
-Rect band(const Rect& frame, int axis, int index, int count) {
-  const auto cut = [&](int length, int i) { return int(std::int64_t(length) * i / count); };
-  Rect r = frame;
-  if (axis == 0) {
-    r.x = frame.x + cut(frame.w, index);
-    r.w = frame.x + cut(frame.w, index + 1) - r.x;
-  } else {
-    r.y = frame.y + cut(frame.h, index);
-    r.h = frame.y + cut(frame.h, index + 1) - r.y;
-  }
-  return r;
-}
 
 }  // namespace
 
@@ -123,7 +110,7 @@ Tile TwoThreeSwap::compose(Image image, const Rect& frame, const VisibilityOrder
     std::vector<int> childFirst;
     for (int c = 0, f = g.first; c < int(g.children.size()); f += g.children[std::size_t(c)], ++c)
       childFirst.push_back(f);
-    const Rect mine = band(frame, axis, me - g.first, n);
+    const Rect mine = sliceOf(frame, axis, me - g.first, n);
 
     // Who sends to us, child by child front to back; the first of them is the partner shown.
     std::vector<int> children(g.children.size());
@@ -134,7 +121,7 @@ Tile TwoThreeSwap::compose(Image image, const Rect& frame, const VisibilityOrder
     std::vector<std::pair<int, Rect>> sources;  // (node, overlap of its old band with ours)
     for (int c : children)
       for (int q = 0; q < g.children[std::size_t(c)]; ++q) {
-        const Rect overlap = band(frame, axis, q, g.children[std::size_t(c)]).intersect(mine);
+        const Rect overlap = sliceOf(frame, axis, q, g.children[std::size_t(c)]).intersect(mine);
         if (!overlap.empty()) sources.emplace_back(childFirst[std::size_t(c)] + q, overlap);
       }
     int partner = g.first + (me - g.first + 1) % n;
@@ -148,7 +135,7 @@ Tile TwoThreeSwap::compose(Image image, const Rect& frame, const VisibilityOrder
     // Send each member of the group the part of our old band that lies in its new band.
     for (int step = 1; step < n; ++step) {
       const int p = g.first + (me - g.first + step) % n;
-      const Rect overlap = band(frame, axis, p - g.first, n).intersect(region);
+      const Rect overlap = sliceOf(frame, axis, p - g.first, n).intersect(region);
       if (!overlap.empty()) comm.send(p, tag, imageToMessage(prepare(image.crop(overlap))));
     }
     Image own = image.crop(mine);

@@ -34,4 +34,19 @@ struct Rect {
   }
 };
 
+//! Slice `index` of `count` equal slices of `r`, cut across x (axis 0) or y (axis 1). Slices are
+//! empty when `r` is thinner than `count` pixels; together they always cover `r` exactly.
+inline Rect sliceOf(const Rect& r, int axis, int index, int count) {
+  const auto cut = [&](int length, int i) { return int(std::int64_t(length) * i / count); };
+  Rect s = r;
+  if (axis == 0) {
+    s.x = r.x + cut(r.w, index);
+    s.w = r.x + cut(r.w, index + 1) - s.x;
+  } else {
+    s.y = r.y + cut(r.h, index);
+    s.h = r.y + cut(r.h, index + 1) - s.y;
+  }
+  return s;
+}
+
 }  // namespace kdswap
