@@ -91,6 +91,10 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
                   "Abort a frame when no message moves for this many seconds, naming who waits on whom")
       ->capture_default_str();
   cmd->add_flag("--checksums", o.checksums, "Checksum every message and refuse corrupted ones");
+  cmd->add_option("--node-execution", o.nodeExecution,
+                  "tasks: one oneTBB task per node, waits suspend (default); threads: one OS thread per node "
+                  "(the sanitizer builds' default)")
+      ->group("Testing");
   cmd->add_option("--inject-fault", o.injectFault,
                   "Testing: KIND:NODE[:MESSAGE[:DELAY_S]] with KIND throw-render, throw-composite, drop, delay "
                   "or corrupt; the first frame fails with an error naming the node")
@@ -168,6 +172,7 @@ Scene buildScene(const SceneOptions& o) {
   if (!(o.stallSeconds > 0.0 && o.stallSeconds <= 86400.0)) throw Error("--stall-timeout must be between 0 and 86400 seconds");
   c.stallSeconds = o.stallSeconds;
   c.checksums = c.checksums || o.checksums;
+  if (!o.nodeExecution.empty()) c.execution = parseNodeExecution(o.nodeExecution);
   if (!o.injectFault.empty()) {
     std::vector<std::string> parts;
     std::stringstream in(o.injectFault);

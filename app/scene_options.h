@@ -36,6 +36,7 @@ struct SceneOptions {
   double stallSeconds = 60.0;
   std::string injectFault;  //!< test-only: KIND:NODE[:MESSAGE[:DELAY_S]]
   bool checksums = false;
+  std::string nodeExecution;  //!< empty: the build's default
 };
 
 struct Scene {

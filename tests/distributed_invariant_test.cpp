@@ -120,6 +120,28 @@ TEST_CASE("every strategy and partition matches the single-node image for P = 1 
       }
 }
 
+TEST_CASE("nodes run as threads (the sanitizer builds' mode) give the same image as nodes run as tasks") {
+  std::mt19937 rng(7);
+  for (const std::string& strategy : strategyNames())
+    for (int nodes : {1, 2, 3, 8, 13, 64}) {
+      ClusterOptions options;
+      options.checksums = true;
+      options.nodes = nodes;
+      options.strategy = strategy;
+      options.execution = NodeExecution::Threads;
+      VirtualCluster threaded(*fixture().volume, options);
+      options.execution = NodeExecution::Tasks;
+      VirtualCluster tasked(*fixture().volume, options);
+      for (const View& view : randomViews(rng, 2)) {
+        const FrameRequest request = requestFor(view, 37, 29);
+        const Image a = threaded.renderFrame(request).image, b = tasked.renderFrame(request).image;
+        // Same node program, same message order per pair: bit-identical, not just within 1e-5.
+        CHECK_MESSAGE(maxAbsDifference(a, b, b.rect()) == 0.0f, strategy << " P=" << nodes);
+      }
+      checkViews(threaded, "kd", randomViews(rng, 1), {{29, 31}});
+    }
+}
+
 TEST_CASE("large node counts 128, 512 and 1024 match the single-node image, empty bricks included") {
   std::mt19937 rng(99);
   for (const std::string& strategy : strategyNames())

@@ -27,10 +27,17 @@ struct Setup {
   }
 };
 
+// Both ways of running nodes: oneTBB tasks that suspend, and one thread per node (sanitizer builds).
+constexpr NodeExecution kExecutions[] = {NodeExecution::Tasks, NodeExecution::Threads};
+const char* name(NodeExecution e) { return e == NodeExecution::Tasks ? "tasks" : "threads"; }
+
 // Runs one faulty frame, returns its error message, then checks the next frame is right.
-std::string failOnceThenRecover(FaultPlan fault, const std::string& strategy = "binary-swap", int nodes = 8) {
+std::string failOnceThenRecover(FaultPlan fault, NodeExecution execution, const std::string& strategy = "binary-swap",
+                                int nodes = 8) {
+  CAPTURE(name(execution));
   Setup s;
   ClusterOptions options;
+  options.execution = execution;
   options.nodes = nodes;
   options.strategy = strategy;
   options.stallSeconds = 1.0;
@@ -56,26 +63,31 @@ TEST_CASE("a node that throws while rendering fails the frame with its name, and
   FaultPlan fault;
   fault.kind = FaultPlan::Kind::ThrowInRender;
   fault.node = 3;
-  const std::string message = failOnceThenRecover(fault);
-  CHECK(message.find("node 3") != std::string::npos);
-  CHECK(message.find("rendering") != std::string::npos);
+  for (NodeExecution execution : kExecutions) {
+    const std::string message = failOnceThenRecover(fault, execution);
+    CHECK(message.find("node 3") != std::string::npos);
+    CHECK(message.find("rendering") != std::string::npos);
+  }
 }
 
 TEST_CASE("a node that throws while compositing fails the frame with its name") {
   FaultPlan fault;
   fault.kind = FaultPlan::Kind::ThrowInComposite;
   fault.node = 5;
-  const std::string message = failOnceThenRecover(fault);
-  CHECK(message.find("node 5") != std::string::npos);
-  CHECK(message.find("compositing") != std::string::npos);
+  for (NodeExecution execution : kExecutions) {
+    const std::string message = failOnceThenRecover(fault, execution);
+    CHECK(message.find("node 5") != std::string::npos);
+    CHECK(message.find("compositing") != std::string::npos);
+  }
 }
 
 TEST_CASE("a dropped message stalls its receiver, which is reported after the time limit") {
+  for (NodeExecution execution : kExecutions)
   for (const std::string strategy : {"binary-swap", "binary-tree", "sequential"}) {
     FaultPlan fault;
     fault.kind = FaultPlan::Kind::DropMessage;
     fault.node = 2;
-    const std::string message = failOnceThenRecover(fault, strategy);
+    const std::string message = failOnceThenRecover(fault, execution, strategy);
     // A lost message between nodes stalls its receiver; a lost tile is missed by the host.
     const bool stalled = message.find("stalled") != std::string::npos && message.find("waits for node 2") != std::string::npos;
     const bool lostTile = message.find("no tile arrived from node 2") != std::string::npos;
@@ -88,15 +100,19 @@ TEST_CASE("a message delayed past the time limit fails the frame instead of hang
   fault.kind = FaultPlan::Kind::DelayMessage;
   fault.node = 1;
   fault.delaySeconds = 2.5;
-  const std::string message = failOnceThenRecover(fault, "binary-swap", 4);
-  CHECK(message.find("stalled") != std::string::npos);
+  for (NodeExecution execution : kExecutions) {
+    const std::string message = failOnceThenRecover(fault, execution, "binary-swap", 4);
+    CHECK(message.find("stalled") != std::string::npos);
+  }
 }
 
 TEST_CASE("a corrupted message is detected by its checksum and never composited") {
   FaultPlan fault;
   fault.kind = FaultPlan::Kind::CorruptMessage;
   fault.node = 6;
-  const std::string message = failOnceThenRecover(fault);
-  CHECK(message.find("checksum") != std::string::npos);
-  CHECK(message.find("from node 6") != std::string::npos);
+  for (NodeExecution execution : kExecutions) {
+    const std::string message = failOnceThenRecover(fault, execution);
+    CHECK(message.find("checksum") != std::string::npos);
+    CHECK(message.find("from node 6") != std::string::npos);
+  }
 }

@@ -61,6 +61,10 @@ class StallWatchdog {
   std::thread thread_;
 };
 
+Mailbox::WaitMode waitModeFor(NodeExecution execution) {
+  return execution == NodeExecution::Threads ? Mailbox::WaitMode::BlockThread : Mailbox::WaitMode::SuspendTask;
+}
+
 int validatedNodes(int nodes) {
   if (nodes < 1 || nodes > kMaxNodes)
     throw Error("nodes " + std::to_string(nodes) + ": must be between 1 and " + std::to_string(kMaxNodes));
@@ -76,13 +80,19 @@ KdTree buildTree(const VolumeInfo& info, const ClusterOptions& options) {
 
 }  // namespace
 
+NodeExecution parseNodeExecution(const std::string& text) {
+  if (text == "tasks") return NodeExecution::Tasks;
+  if (text == "threads") return NodeExecution::Threads;
+  throw Error("node execution '" + text + "': expected tasks or threads");
+}
+
 VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions& options)
     : options_(options),
       info_(source.info()),
       tree_(buildTree(info_, options)),
       strategy_(createStrategy(options.strategy, options.composite)),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
-      network_(options.nodes),
+      network_(options.nodes, waitModeFor(options.execution)),
       nodes_(std::size_t(options.nodes)) {
   const double start = nowSeconds();
   InprocCommunicator host(network_, Communicator::kHost);
@@ -124,32 +134,43 @@ template <typename Body>
 void VirtualCluster::runOnNodes(Body&& body, bool withHostTask, const std::function<void()>& hostTask) {
   network_.reset();
   std::atomic<int> finished{0};
+  auto runHost = [&] {
+    try {
+      hostTask();
+    } catch (const std::exception& e) {
+      network_.abort(std::string("host: ") + e.what());
+    }
+    finished.fetch_add(1);
+  };
+  auto runNode = [&](int r) {
+    InprocCommunicator comm(network_, r, options_.checksums, faultFilter(r));
+    try {
+      body(r, comm);
+    } catch (const std::exception& e) {
+      // The first failure names the node; the others then fail with "aborted" and lose.
+      network_.abort("node " + std::to_string(r) + ": " + e.what());
+    }
+    finished.fetch_add(1);
+  };
   {
     StallWatchdog watchdog(network_, finished, options_.stallSeconds);
-    arena_.execute([&] {
-      tbb::task_group group;
-      if (withHostTask)
-        group.run([&] {
-          try {
-            hostTask();
-          } catch (const std::exception& e) {
-            network_.abort(std::string("host: ") + e.what());
-          }
-          finished.fetch_add(1);
-        });
-      for (int r = 0; r < options_.nodes; ++r)
-        group.run([&, r] {
-          InprocCommunicator comm(network_, r, options_.checksums, faultFilter(r));
-          try {
-            body(r, comm);
-          } catch (const std::exception& e) {
-            // The first failure names the node; the others then fail with "aborted" and lose.
-            network_.abort("node " + std::to_string(r) + ": " + e.what());
-          }
-          finished.fetch_add(1);
-        });
-      group.wait();
-    });
+    if (options_.execution == NodeExecution::Threads) {
+      // Not inside arena_: a thread without a free arena slot would be queued as a task there, and
+      // blocked nodes holding the slots would starve the rest. The ray caster's parallel loops run
+      // in each thread's implicit arena instead.
+      std::vector<std::thread> threads;
+      threads.reserve(std::size_t(options_.nodes) + 1);
+      if (withHostTask) threads.emplace_back(runHost);
+      for (int r = 0; r < options_.nodes; ++r) threads.emplace_back(runNode, r);
+      for (std::thread& t : threads) t.join();
+    } else {
+      arena_.execute([&] {
+        tbb::task_group group;
+        if (withHostTask) group.run(runHost);
+        for (int r = 0; r < options_.nodes; ++r) group.run([&, r] { runNode(r); });
+        group.wait();
+      });
+    }
   }
   if (network_.aborted()) throw Error(network_.abortReason());
 }

@@ -25,6 +25,18 @@ namespace kdswap {
 
 inline constexpr int kMaxNodes = 4096;
 
+//! How virtual nodes run. Tasks: one oneTBB task per node; a waiting node suspends its task
+//! (swapcontext), so thousands of nodes share the worker threads. Threads: one OS thread per node
+//! and blocking mailboxes; same node program and messages, but no stack switching, which
+//! AddressSanitizer and ThreadSanitizer cannot follow: sanitizer builds use it by default.
+enum class NodeExecution { Tasks, Threads };
+NodeExecution parseNodeExecution(const std::string& text);  //!< "tasks" | "threads"; throws Error
+#if defined(KDSWAP_SANITIZED)
+inline constexpr NodeExecution kDefaultNodeExecution = NodeExecution::Threads;
+#else
+inline constexpr NodeExecution kDefaultNodeExecution = NodeExecution::Tasks;
+#endif
+
 struct ClusterOptions {
   int nodes = 8;
   PartitionKind partition = PartitionKind::KdTree;
@@ -34,6 +46,7 @@ struct ClusterOptions {
   int threads = 0;                       //!< worker threads; 0 = every core
   double stallSeconds = 60.0;            //!< a frame with no message for this long is aborted
   bool checksums = kChecksumsByDefault;  //!< checksum every message; a corrupted one is refused
+  NodeExecution execution = kDefaultNodeExecution;
 #if defined(KDSWAP_CHECKS) && KDSWAP_CHECKS
   static constexpr bool kChecksumsByDefault = true;
 #else

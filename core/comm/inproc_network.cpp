@@ -6,9 +6,9 @@
 
 namespace kdswap {
 
-InprocNetwork::InprocNetwork(int nodes) {
+InprocNetwork::InprocNetwork(int nodes, Mailbox::WaitMode waitMode) {
   mailboxes_.reserve(std::size_t(nodes) + 1);
-  for (int i = 0; i <= nodes; ++i) mailboxes_.push_back(std::make_unique<Mailbox>());
+  for (int i = 0; i <= nodes; ++i) mailboxes_.push_back(std::make_unique<Mailbox>(waitMode));
 }
 
 void InprocNetwork::abort(const std::string& reason) {

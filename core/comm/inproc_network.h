@@ -16,7 +16,8 @@ namespace kdswap {
 
 class InprocNetwork {
  public:
-  explicit InprocNetwork(int nodes);
+  //! `waitMode`: SuspendTask when nodes are oneTBB tasks, BlockThread when each node is a thread.
+  explicit InprocNetwork(int nodes, Mailbox::WaitMode waitMode = Mailbox::WaitMode::SuspendTask);
 
   int nodes() const { return int(mailboxes_.size()) - 1; }
   //! Mailbox of `rank` (0 .. nodes-1) or Communicator::kHost.
