@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
@@ -87,6 +88,17 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--radices", o.radices,
                   "radix-k: group size of each round, e.g. 4,2 (product = --nodes; default: prime factors of P)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = every core)")->capture_default_str();
+  cmd->add_option("--balance", o.balance,
+                  "Plane placement: space (halve space, as the paper) or cost (balance the work estimated "
+                  "from the transfer function: visible blocks cost more than empty ones)")
+      ->capture_default_str();
+  cmd->add_option("--speeds", o.speeds,
+                  "Relative node speeds, e.g. 1,0.5 (repeated over the P nodes): partitions follow them and "
+                  "modelled times divide each node's work by its speed");
+  cmd->add_option("--network", o.network,
+                  "Network model for the modelled time: ideal (no cost), cm5 (CM-5 fat tree: 20/10/5 MB/s), "
+                  "ethernet10 (10 Mbit/s shared by all nodes)")
+      ->capture_default_str();
   cmd->add_option("--stall-timeout", o.stallSeconds,
                   "Abort a frame when no message moves for this many seconds, naming who waits on whom")
       ->capture_default_str();
@@ -173,6 +185,17 @@ Scene buildScene(const SceneOptions& o) {
   c.stallSeconds = o.stallSeconds;
   c.checksums = c.checksums || o.checksums;
   if (!o.nodeExecution.empty()) c.execution = parseNodeExecution(o.nodeExecution);
+  if (o.balance != "space" && o.balance != "cost") throw Error("--balance \"" + o.balance + "\": expected space or cost");
+  c.balance = o.balance;
+  c.balanceTransfer = r.transfer;
+  c.balanceRange = resolveValueRange(r.settings, info);
+  if (!o.speeds.empty()) {
+    const auto speeds = parseNumbers(o.speeds, ',', "--speeds");
+    for (double v : speeds)
+      if (!(v >= 0.01 && v <= 100.0)) throw Error("--speeds \"" + o.speeds + "\": each speed must be from 0.01 to 100");
+    for (int n = 0; n < c.nodes; ++n) c.speeds.push_back(speeds[std::size_t(n) % speeds.size()]);
+  }
+  c.network = networkModel(o.network);
   if (!o.injectFault.empty()) {
     std::vector<std::string> parts;
     std::stringstream in(o.injectFault);

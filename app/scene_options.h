@@ -37,6 +37,9 @@ struct SceneOptions {
   std::string injectFault;  //!< test-only: KIND:NODE[:MESSAGE[:DELAY_S]]
   bool checksums = false;
   std::string nodeExecution;  //!< empty: the build's default
+  std::string balance = "space";
+  std::string speeds;          //!< "1,0.5,..." per node, repeated to P values; empty = all 1
+  std::string network = "ideal";
 };
 
 struct Scene {

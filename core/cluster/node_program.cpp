@@ -31,6 +31,8 @@ class NodePhaseObserver : public PhaseObserver {
     current_.computeSeconds = std::max(0.0, nowSeconds() - startTime_ - current_.waitSeconds);
     current_.bytesSent = now.bytesSent - startCounters_.bytesSent;
     current_.bytesReceived = now.bytesReceived - startCounters_.bytesReceived;
+    current_.messagesSent = now.messagesSent - startCounters_.messagesSent;
+    current_.messagesReceived = now.messagesReceived - startCounters_.messagesReceived;
     current_.pixels = pixels;
     current_.region = region;
     largestImage_ = std::max<std::uint64_t>(largestImage_, image.bytes());

@@ -73,9 +73,20 @@ int validatedNodes(int nodes) {
 
 //! The partition in the shape the strategy groups nodes in (radix-k, 2-3 swap and telescoping
 //! need subtrees other than pairs), so every group a strategy composites is a k-d subtree.
-KdTree buildTree(const VolumeInfo& info, const ClusterOptions& options) {
+KdTree buildTree(const VolumeSource& source, const ClusterOptions& options) {
+  const VolumeInfo& info = source.info();
   const TreeShape shape = createStrategy(options.strategy, options.composite)->treeShape(validatedNodes(options.nodes));
-  return KdTree::build(info.dims, options.nodes, options.partition, options.slabAxis, shape);
+  PartitionBalance balance;
+  balance.rankSpeeds = options.speeds;
+  if (options.balance == "cost") {
+    const glm::vec2 range = options.balanceRange.y > options.balanceRange.x ? options.balanceRange
+                                                                            : glm::vec2(info.minValue, info.maxValue);
+    balance.cost = std::make_shared<CostField>(
+        CostField::estimate(source, TransferTable(options.balanceTransfer, 1.0f), range));
+  } else if (options.balance != "space") {
+    throw Error("balance \"" + options.balance + "\": expected space or cost");
+  }
+  return KdTree::build(info.dims, options.nodes, options.partition, options.slabAxis, shape, balance);
 }
 
 }  // namespace
@@ -89,7 +100,7 @@ NodeExecution parseNodeExecution(const std::string& text) {
 VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions& options)
     : options_(options),
       info_(source.info()),
-      tree_(buildTree(info_, options)),
+      tree_(buildTree(source, options)),
       strategy_(createStrategy(options.strategy, options.composite)),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
       network_(options.nodes, waitModeFor(options.execution)),
@@ -230,6 +241,9 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   s.gatherSeconds = end - gatherStart;
   s.distributeSeconds = distributeSeconds_;
   s.peakRssBytes = peakResidentBytes();
+  s.network = options_.network;
+  if (!options_.speeds.empty())
+    for (NodeReport& n : reports) n.speed = options_.speeds[std::size_t(n.rank)];
   s.perNode = std::move(reports);
   return result;
 }

@@ -18,7 +18,9 @@
 #include "core/comm/inproc_network.h"
 #include "core/composite/registry.h"
 #include "core/metrics/frame_stats.h"
+#include "core/metrics/network_model.h"
 #include "core/partition/kd_tree.h"
+#include "core/transfer/transfer_function.h"
 #include "core/volume/volume_source.h"
 
 namespace kdswap {
@@ -47,6 +49,17 @@ struct ClusterOptions {
   double stallSeconds = 60.0;            //!< a frame with no message for this long is aborted
   bool checksums = kChecksumsByDefault;  //!< checksum every message; a corrupted one is refused
   NodeExecution execution = kDefaultNodeExecution;
+
+  // Load balancing and the modelled machine (issue 8).
+  //! Plane placement: "space" halves space (the paper); "cost" balances estimated work, a
+  //! CostField of `balanceTransfer` over `balanceRange` (the data's range when empty).
+  std::string balance = "space";
+  TransferFunction balanceTransfer;
+  glm::vec2 balanceRange{0.0f};
+  //! Relative processor speed per node (empty: all 1). Partitions follow it: a node twice as fast
+  //! gets twice the work; modelled times divide each node's measured work by its speed.
+  std::vector<double> speeds;
+  NetworkModel network;  //!< costs each phase's messages in the modelled time
 #if defined(KDSWAP_CHECKS) && KDSWAP_CHECKS
   static constexpr bool kChecksumsByDefault = true;
 #else

@@ -12,13 +12,19 @@ namespace kdswap {
 
 double FrameStats::renderMax() const {
   double m = 0;
-  for (const NodeReport& n : perNode) m = std::max(m, n.renderSeconds);
+  for (const NodeReport& n : perNode) m = std::max(m, n.modelledRenderSeconds());
   return m;
+}
+
+double FrameStats::renderMean() const {
+  double sum = 0;
+  for (const NodeReport& n : perNode) sum += n.modelledRenderSeconds();
+  return perNode.empty() ? 0.0 : sum / double(perNode.size());
 }
 
 double FrameStats::compositeMax() const {
   double m = 0;
-  for (const NodeReport& n : perNode) m = std::max(m, n.compositeSeconds());
+  for (const NodeReport& n : perNode) m = std::max(m, n.compositeSeconds() / n.speed);
   return m;
 }
 
@@ -31,12 +37,18 @@ int FrameStats::phaseCount() const {
 double FrameStats::phaseComputeMax(int phase) const {
   double m = 0;
   for (const NodeReport& n : perNode)
-    if (phase < int(n.phases.size())) m = std::max(m, n.phases[std::size_t(phase)].computeSeconds);
+    if (phase < int(n.phases.size())) m = std::max(m, n.phases[std::size_t(phase)].computeSeconds / n.speed);
   return m;
 }
 
+double FrameStats::modelledCommSeconds() const {
+  double t = 0;
+  for (int p = 0; p < phaseCount(); ++p) t += network.phaseSeconds(perNode, p);
+  return t;
+}
+
 double FrameStats::modelledParallelSeconds() const {
-  double t = renderMax();
+  double t = renderMax() + modelledCommSeconds();
   for (int p = 0; p < phaseCount(); ++p) t += phaseComputeMax(p);
   return t;
 }
@@ -69,6 +81,9 @@ nlohmann::json FrameStats::toJson() const {
   j["render_s_max"] = renderMax();
   j["composite_s_max"] = compositeMax();
   j["modelled_parallel_s"] = modelledParallelSeconds();
+  j["modelled_comm_s"] = modelledCommSeconds();
+  j["network"] = network.name;
+  j["render_s_mean"] = renderMean();
   j["distribute_s"] = distributeSeconds;
   j["gather_s"] = gatherSeconds;
   j["samples"] = samples();
@@ -81,6 +96,7 @@ nlohmann::json FrameStats::toJson() const {
     nlohmann::json nj;
     nj["rank"] = n.rank;
     nj["render_s"] = n.renderSeconds;
+    nj["speed"] = n.speed;
     nj["composite_s"] = n.compositeSeconds();
     nj["wait_s"] = n.waitSeconds();
     nj["rays"] = n.rays;
@@ -96,7 +112,8 @@ nlohmann::json FrameStats::toJson() const {
                         {"wait_s", p.waitSeconds},
                         {"pixels", p.pixels},
                         {"bytes_sent", p.bytesSent},
-                        {"bytes_received", p.bytesReceived}});
+                        {"bytes_received", p.bytesReceived},
+                        {"messages_sent", p.messagesSent}});
     nj["phases"] = std::move(phases);
     nodesJson.push_back(std::move(nj));
   }
@@ -107,8 +124,8 @@ nlohmann::json FrameStats::toJson() const {
 std::string formatFrameTable(const FrameStats& s) {
   std::uint64_t privateMax = 0;
   for (const NodeReport& n : s.perNode) privateMax = std::max(privateMax, n.privateBytes);
-  char text[1024];
-  std::snprintf(text, sizeof text,
+  char text[1536];
+  int n = std::snprintf(text, sizeof text,
                 "%d nodes, %dx%d, %s compositing, %s partition\n"
                 "  render     (max over nodes) %9.2f ms\n"
                 "  composite  (max over nodes) %9.2f ms   over %d phase(s)\n"
@@ -120,6 +137,10 @@ std::string formatFrameTable(const FrameStats& s) {
                 s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
                 (unsigned long long)s.rays(), formatBytes(s.bytesSent()).c_str(), formatBytes(privateMax).c_str(),
                 formatBytes(s.peakRssBytes).c_str());
+  if (!s.network.ideal() && n > 0 && n < int(sizeof text))
+    std::snprintf(text + n, sizeof text - std::size_t(n),
+                  "  modelled communication      %9.2f ms   (%s network, included in the modelled time)\n",
+                  s.modelledCommSeconds() * 1e3, s.network.name.c_str());
   return text;
 }
 

@@ -1,6 +1,7 @@
 // FrameStats: one frame's figures, aggregated the way the paper reports them (maximum over
 // nodes), plus the modelled parallel time: max render + sum over phases of the max composite
-// time, as if every virtual node had its own processor (behind the paper's Figures 7 and 8).
+// time, as if every virtual node had its own processor (behind the paper's Figures 7 and 8), of
+// its modelled speed, with each phase's messages costed by the network model (zero when ideal).
 #pragma once
 
 #include <string>
@@ -8,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/metrics/network_model.h"
 #include "core/metrics/node_report.h"
 
 namespace kdswap {
@@ -20,10 +22,13 @@ struct FrameStats {
   double distributeSeconds = 0;  //!< data distribution (once per cluster), paper Table 5
   double gatherSeconds = 0;      //!< image gather on the host for this frame
   std::uint64_t peakRssBytes = 0;
+  NetworkModel network;          //!< costs messages in the modelled time
   std::vector<NodeReport> perNode;
 
-  double renderMax() const;
-  double compositeMax() const;
+  double renderMax() const;      //!< max over nodes of render work / node speed
+  double compositeMax() const;   //!< max over nodes of compositing work / node speed
+  double renderMean() const;     //!< mean over nodes of render work / node speed
+  double modelledCommSeconds() const;  //!< sum over phases of the network model's phase time
   double modelledParallelSeconds() const;
   std::uint64_t samples() const;
   std::uint64_t rays() const;

@@ -17,15 +17,20 @@ struct PhaseStats {
   double waitSeconds = 0;    //!< time waiting for a message
   std::int64_t pixels = 0;   //!< pixels composited
   std::uint64_t bytesSent = 0, bytesReceived = 0;
+  std::uint64_t messagesSent = 0, messagesReceived = 0;
 };
 
 struct NodeReport {
   int rank = -1;
   double renderSeconds = 0;       //!< ray-casting work on one processor
+  //! Relative speed of the processor this node models (1 = this machine's core). Modelled times
+  //! divide measured work by it; measured figures stay as measured.
+  double speed = 1.0;
   std::uint64_t rays = 0, samples = 0;
   std::uint64_t privateBytes = 0; //!< brick (voxels + gradients) + largest image held
   std::vector<PhaseStats> phases; //!< compositing phases, in order (render not included)
 
+  double modelledRenderSeconds() const { return renderSeconds / speed; }
   double compositeSeconds() const {
     double s = 0;
     for (const PhaseStats& p : phases) s += p.computeSeconds;

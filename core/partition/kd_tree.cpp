@@ -112,9 +112,18 @@ int shapeLeaves(const TreeShape& shape) {
   return leaves[0];
 }
 
-KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis, const TreeShape& shape) {
+KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis, const TreeShape& shape,
+                     const PartitionBalance& balance) {
   KDSWAP_CHECK_GE(ranks, 1);
+  if (!balance.rankSpeeds.empty()) {
+    if (int(balance.rankSpeeds.size()) != ranks)
+      throw Error(std::to_string(balance.rankSpeeds.size()) + " node speeds for " + std::to_string(ranks) + " nodes");
+    for (double s : balance.rankSpeeds)
+      if (!(s > 0.0 && s < 1e6)) throw Error("node speed " + std::to_string(s) + ": must be positive");
+  }
   KdTree tree;
+  tree.balance_ = balance;
+  if (balance.active() && !tree.balance_.cost) tree.balance_.cost = std::make_shared<CostField>(CostField::uniform(dims));
   tree.dims_ = dims;
   tree.ranks_ = ranks;
   tree.virtualLeaves_ = int(std::bit_floor(unsigned(ranks)));
@@ -135,6 +144,7 @@ KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int 
     tree.buildShaped(domain, shape, leaves, ends, cursor, nextRank, 0, kind, slabAxis);
   }
   for (int r = 0; r < ranks; ++r) KDSWAP_CHECK_GE(tree.leafOf_[r], 0);
+  tree.balance_ = {};  // only needed while building; the tree stays cheap to copy
   return tree;
 }
 
@@ -154,6 +164,15 @@ int KdTree::buildShaped(const VoxelBox& box, const TreeShape& shape, const std::
   for (std::size_t c = 0, child = cursor; c < std::size_t(k); ++c, child = ends[child]) counts.push_back(leaves[child]);
   std::vector<int> planes;
   const int axis = cutSlabs(box, depth, kind, slabAxis, counts, planes);
+  if (balance_.active() && box.hi[axis] - box.lo[axis] >= k) {
+    std::vector<double> weights;
+    for (int c = 0, rank = nextRank; c < k; rank += counts[std::size_t(c)], ++c) {
+      double w = 0.0;
+      for (int r = rank; r < rank + counts[std::size_t(c)]; ++r) w += speedOf(r);
+      weights.push_back(w);
+    }
+    planes = balancedPlanes(box, axis, weights);
+  }
 
   std::vector<int> children;
   for (int c = 0; c < k; ++c) {
@@ -185,16 +204,44 @@ int KdTree::leafNode(const VoxelBox& box, int rank) {
 
 // Chooses the axis and plane for a node with `lowCount` and `highCount` ranks on each side.
 // Returns the axis, or -1 when the box is too thin to cut anywhere (the high side is then empty).
-int KdTree::splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, int lowCount, int highCount,
+std::vector<int> KdTree::balancedPlanes(const VoxelBox& box, int axis, const std::vector<double>& weights) const {
+  const int k = int(weights.size()), lo = box.lo[axis], hi = box.hi[axis];
+  const std::vector<double> layers = balance_.cost->layerCosts(box, axis);
+  double totalWork = 0.0, totalWeight = 0.0;
+  for (double c : layers) totalWork += c;
+  for (double w : weights) totalWeight += w;
+  std::vector<int> planes;
+  double target = 0.0, cumulative = 0.0;
+  int layer = 0, previous = lo;
+  for (int j = 1; j < k; ++j) {
+    target += totalWork * weights[std::size_t(j - 1)] / totalWeight;
+    // Advance while taking the next layer brings the running work closer to the target.
+    while (layer < int(layers.size()) &&
+           std::fabs(cumulative + layers[std::size_t(layer)] - target) <= std::fabs(cumulative - target)) {
+      cumulative += layers[std::size_t(layer)];
+      ++layer;
+    }
+    // Every part keeps at least one layer of cells.
+    const int plane = std::clamp(lo + layer, previous + 1, hi - (k - j));
+    for (; layer < plane - lo; ++layer) cumulative += layers[std::size_t(layer)];
+    for (; layer > plane - lo; --layer) cumulative -= layers[std::size_t(layer - 1)];
+    planes.push_back(plane);
+    previous = plane;
+  }
+  return planes;
+}
+
+int KdTree::splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, double lowShare,
                       VoxelBox& lowBox, VoxelBox& highBox) {
   lowBox = highBox = box;
   for (int attempt = 0; attempt < 3; ++attempt) {
     const int axis = kind == PartitionKind::Slab ? slabAxis : (depth + attempt) % 3;
     const int extent = box.hi[axis] - box.lo[axis];
     if (extent >= 2) {
-      // Plane in proportion to the node counts, kept strictly inside so both sides are non-empty.
-      const double share = double(lowCount) / double(lowCount + highCount);
-      int plane = box.lo[axis] + int(std::lround(extent * share));
+      // Plane in proportion to the node counts (or, balanced, to the work), kept strictly inside
+      // so both sides are non-empty.
+      int plane = box.lo[axis] + int(std::lround(extent * lowShare));
+      if (balance_.active()) plane = balancedPlanes(box, axis, {lowShare, 1.0 - lowShare})[0];
       plane = std::clamp(plane, box.lo[axis] + 1, box.hi[axis] - 1);
       lowBox.hi[axis] = plane;
       highBox.lo[axis] = plane;
@@ -215,15 +262,27 @@ int KdTree::buildNode(const VoxelBox& box, int firstLeaf, int leafCount, int dep
   nodes_.emplace_back();
   nodes_[index].box = box;
 
-  int lowCount, highCount;
+  // Summed speed of the ranks below virtual leaves [first, first + count) (each node counts 1
+  // when unbalanced, so the share is the node-count share).
+  auto weightOf = [&](int first, int count) {
+    if (!balance_.active()) return double(ranksIn(first, count));
+    double w = 0.0;
+    for (int j = first; j < first + count; ++j) w += speedOf(j) + (j < extras ? speedOf(j + virtualLeaves_) : 0.0);
+    return w;
+  };
+  double lowWeight, highWeight;
   if (leafCount == 1) {
-    lowCount = highCount = 1;  // a virtual leaf holding rank j and its folded sibling j + P'
+    // A virtual leaf holding rank j and its folded sibling j + P'.
+    lowWeight = balance_.active() ? speedOf(firstLeaf) : 1.0;
+    highWeight = balance_.active() ? speedOf(firstLeaf + virtualLeaves_) : 1.0;
   } else {
-    lowCount = ranksIn(firstLeaf, leafCount / 2);
-    highCount = ranksIn(firstLeaf + leafCount / 2, leafCount - leafCount / 2);
+    lowWeight = weightOf(firstLeaf, leafCount / 2);
+    highWeight = weightOf(firstLeaf + leafCount / 2, leafCount - leafCount / 2);
   }
   VoxelBox lowBox, highBox;
-  const int axis = box.empty() ? -1 : splitNode(box, depth, kind, slabAxis, lowCount, highCount, lowBox, highBox);
+  const int axis = box.empty() ? -1
+                               : splitNode(box, depth, kind, slabAxis, lowWeight / (lowWeight + highWeight), lowBox,
+                                           highBox);
   if (box.empty()) lowBox = highBox = box;
   nodes_[index].axis = axis < 0 ? 0 : axis;
   nodes_[index].plane = axis < 0 ? box.hi[0] : lowBox.hi[axis];

@@ -8,6 +8,10 @@
 // group a strategy composites is a subtree. Planes split space in proportion to the node counts
 // on each side, so every node gets about the same number of voxels.
 //
+// Load balancing: with a PartitionBalance, every plane is placed so that the estimated work (a
+// CostField) on each side is in proportion to the summed speed of the ranks on that side, instead
+// of halving space; without one the tree is exactly the space-halving tree above.
+//
 // Other shapes (radix-k, 2-3 swap, telescoping group nodes in threes, fours or unequal halves):
 // KdTree::build takes a TreeShape, and a node with k children is cut into k slabs along one axis,
 // each as thick as its share of the ranks. A ray crosses parallel planes in one direction only, so
@@ -20,6 +24,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/partition/cost_field.h"
 #include "core/volume/voxel_box.h"
 
 namespace kdswap {
@@ -58,12 +63,19 @@ struct VisibilityOrder {
   bool inFront(int a, int b) const { return position[a] < position[b]; }
 };
 
+//! How planes are placed: by space (empty), or by estimated work shared in proportion to speeds.
+struct PartitionBalance {
+  std::shared_ptr<const CostField> cost;  //!< work estimate; null: every cell costs the same
+  std::vector<double> rankSpeeds;         //!< relative speed per rank; empty: all equal
+  bool active() const { return cost != nullptr || !rankSpeeds.empty(); }
+};
+
 class KdTree {
  public:
   //! `slabAxis` is used by PartitionKind::Slab (0, 1 or 2). A non-empty `shape` must have exactly
-  //! `ranks` leaves.
+  //! `ranks` leaves. A non-empty `balance.rankSpeeds` must have `ranks` positive entries.
   static KdTree build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis = 2,
-                      const TreeShape& shape = {});
+                      const TreeShape& shape = {}, const PartitionBalance& balance = {});
 
   int ranks() const { return ranks_; }
   const glm::ivec3& dims() const { return dims_; }
@@ -77,8 +89,11 @@ class KdTree {
  private:
   int buildNode(const VoxelBox& box, int firstLeaf, int leafCount, int depth, PartitionKind kind, int slabAxis);
   int leafNode(const VoxelBox& box, int rank);
-  int splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, int lowCount, int highCount,
+  int splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, double lowShare,
                 VoxelBox& lowBox, VoxelBox& highBox);
+  //! Balanced planes: cuts `box` along `axis` so each part's work matches its share of `weights`.
+  std::vector<int> balancedPlanes(const VoxelBox& box, int axis, const std::vector<double>& weights) const;
+  double speedOf(int rank) const { return balance_.rankSpeeds.empty() ? 1.0 : balance_.rankSpeeds[std::size_t(rank)]; }
   int buildShaped(const VoxelBox& box, const TreeShape& shape, const std::vector<int>& leaves,
                   const std::vector<std::size_t>& ends, std::size_t& cursor, int& nextRank, int depth, PartitionKind kind,
                   int slabAxis);
@@ -88,6 +103,7 @@ class KdTree {
   int virtualLeaves_ = 0;  //!< P'
   std::vector<KdNode> nodes_;
   std::vector<int> leafOf_;  //!< rank -> node index
+  PartitionBalance balance_;  //!< used while building
 };
 
 //! Slab axis for a view: the volume axis most nearly parallel to the viewing direction.
