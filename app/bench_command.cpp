@@ -2,6 +2,7 @@
 // paper comparison (--paper) and issue 6's speed targets (--targets). Ctrl-C keeps the results.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -31,6 +32,7 @@ struct BenchOptions {
   std::string dataset, volume, sizes = "64,128,256,512", nodes = "1,2,4,8,16,32,64,128,256,512";
   std::string composite = "binary-swap", tf, shading = "on", partition = "kd", outDir = "bench-out";
   std::string head = "../shared/data/headsq.nhdr", view = "30,15";
+  std::string balance = "space", speeds, network = "ideal";
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
   bool sparse = false, micro = false, paper = false, targets = false;
@@ -85,7 +87,8 @@ std::string commandLine(const BenchOptions& o) {
                 o.sizes.c_str(), o.nodes.c_str(), o.composite.c_str(), o.frames, double(o.degrees), double(o.step),
                 o.shading.c_str(), double(o.ert), o.view.c_str(), o.partition.c_str(), o.sparse ? " --sparse" : "",
                 o.threads);
-  return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --out-dir " + o.outDir;
+  return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --balance " + o.balance +
+         (o.speeds.empty() ? "" : " --speeds " + o.speeds) + " --network " + o.network + " --out-dir " + o.outDir;
 }
 
 void runGrid(const BenchOptions& o) {
@@ -114,6 +117,22 @@ void runGrid(const BenchOptions& o) {
   g.cluster.partition = parsePartition(o.partition);
   g.cluster.composite.sparse = o.sparse;
   g.cluster.threads = o.threads;
+  g.cluster.network = networkModel(o.network);
+  g.balances = parseNames(o.balance);
+  for (const std::string& b : g.balances)
+    if (b != "space" && b != "cost") throw Error("--balance \"" + o.balance + "\": expected space, cost or space,cost");
+  for (const std::string& item : parseNames(o.speeds)) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || !(v >= 0.01 && v <= 100.0))
+      throw Error("--speeds \"" + o.speeds + "\": \"" + item + "\" is not a speed from 0.01 to 100");
+    g.speedPattern.push_back(v);
+  }
   std::filesystem::create_directories(o.outDir);
 
   const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
@@ -128,13 +147,14 @@ void runGrid(const BenchOptions& o) {
   writeTextFile((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
   writeTextFile((dir / "bench.json").string(), benchJson(ctx, result).dump(2) + "\n");
   std::printf("wrote %s and %s\n", (dir / "bench.csv").c_str(), (dir / "bench.json").c_str());
-  for (std::size_t i = 0; i < g.strategies.size(); ++i) {
-    const std::string name = i == 0 ? "speedup.png" : "speedup-" + g.strategies[i] + ".png";
-    bool any = false;
-    for (const BenchCell& c : result.cells) any = any || c.strategy == g.strategies[i];
-    if (!any) continue;
-    writeImage((dir / name).string(), drawSpeedupChart(result.cells, g.strategies[i]));
-    std::printf("wrote %s (modelled speedup, %s)\n", (dir / name).c_str(), g.strategies[i].c_str());
+  // One chart per measured strategy label ("binary-swap", "binary-swap+cost", ...), in run order.
+  std::vector<std::string> labels;
+  for (const BenchCell& c : result.cells)
+    if (std::find(labels.begin(), labels.end(), c.strategy) == labels.end()) labels.push_back(c.strategy);
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const std::string name = i == 0 ? "speedup.png" : "speedup-" + labels[i] + ".png";
+    writeImage((dir / name).string(), drawSpeedupChart(result.cells, labels[i]));
+    std::printf("wrote %s (modelled speedup, %s)\n", (dir / name).c_str(), labels[i].c_str());
   }
   if (result.interrupted) {
     std::fprintf(stderr, "kdswap bench: interrupted; kept the %zu cells measured so far\n", result.cells.size());
@@ -186,6 +206,8 @@ void addBenchCommand(CLI::App& app) {
       "Examples:\n"
       "  kdswap bench --dataset phantom:128 --sizes 64,128,256 --nodes 1,2,4,8,16\n"
       "  kdswap bench --dataset turbulence:256 --composite binary-swap,binary-tree --frames 3\n"
+      "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 1,8,64 --balance space,cost\n"
+      "  kdswap bench --dataset phantom:128 --sizes 256 --nodes 1,8,64 --network ethernet10\n"
       "  kdswap bench --micro      kernels alone: ray casting per core, over vs memcpy, binary-swap\n"
       "  kdswap bench --paper      the paper's sourced cells beside ours\n"
       "  kdswap bench --targets    issue 6's speed targets, MET or MISSED\n"
@@ -205,6 +227,12 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)");
   cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
+  cmd->add_option("--balance", o->balance,
+                  "Plane placements to compare: space, cost or space,cost (cost cells read STRATEGY+cost)")
+      ->capture_default_str();
+  cmd->add_option("--speeds", o->speeds, "Relative node speeds, repeated over each cell's nodes, e.g. 1,0.5");
+  cmd->add_option("--network", o->network, "Network model for modelled time: ideal, cm5 or ethernet10")
+      ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads (0 = every core)")->capture_default_str();
   cmd->add_option("--out-dir", o->outDir, "Folder for bench.csv, bench.json, speedup.png")->capture_default_str();
   cmd->add_flag("--micro", o->micro, "Measure the kernels alone");

@@ -195,7 +195,11 @@ Scene buildScene(const SceneOptions& o) {
       if (!(v >= 0.01 && v <= 100.0)) throw Error("--speeds \"" + o.speeds + "\": each speed must be from 0.01 to 100");
     for (int n = 0; n < c.nodes; ++n) c.speeds.push_back(speeds[std::size_t(n) % speeds.size()]);
   }
-  c.network = networkModel(o.network);
+  try {
+    c.network = networkModel(o.network);
+  } catch (const Error& e) {
+    throw Error(std::string("--network: ") + e.what());
+  }
   if (!o.injectFault.empty()) {
     std::vector<std::string> parts;
     std::stringstream in(o.injectFault);

@@ -133,3 +133,32 @@ TEST_CASE("every paper figure carries its source") {
     CHECK(c.nodes > 0);
   }
 }
+
+TEST_CASE("the grid compares space and cost planes, with node speeds and a network model") {
+  auto volume = test::makeBlobs(glm::ivec3(20, 18, 16));
+  BenchGridOptions o;
+  o.sizes = {24};
+  o.nodes = {1, 4};
+  o.frames = 1;
+  o.balances = {"space", "cost"};
+  o.speedPattern = {1.0, 0.5};
+  o.cluster.network = networkModel("ethernet10");
+  o.base.transfer = loadTransferFunction("grayscale");
+  const BenchResult r = runBenchGrid(*volume, o, {}, nullptr);
+  REQUIRE(r.cells.size() == 4);
+  CHECK(r.cells[0].strategy == "binary-swap");
+  CHECK(r.cells[2].strategy == "binary-swap+cost");
+  CHECK(r.cells[2].balance == "cost");
+  for (const BenchCell& c : r.cells) {
+    CHECK(c.renderImbalance >= 1.0);
+    // One node sends nothing; four nodes swap over the shared Ethernet, which the model charges.
+    if (c.nodes == 1) CHECK(c.commSeconds == 0.0);
+    if (c.nodes == 4) CHECK(c.commSeconds > 0.0);
+  }
+  BenchContext ctx;
+  ctx.dataset = "blobs";
+  const std::string csv = benchCsv(ctx, r.cells);
+  CHECK(csv.find(",balance,comm_s,render_imbalance\n") != std::string::npos);
+  CHECK(csv.find(",cost,") != std::string::npos);
+  CHECK(formatCellDetails(r.cells).find("comm ms") != std::string::npos);
+}

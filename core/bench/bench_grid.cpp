@@ -16,7 +16,7 @@ namespace {
 double cellWeight(int size, int frames) { return double(size) * size * (frames + 1) + 1e4; }
 
 struct FrameFigures {
-  std::vector<double> render, composite, wall, modelled, samples, bytes;
+  std::vector<double> render, composite, wall, modelled, samples, bytes, comm, imbalance;
 };
 
 BenchCell summarise(const std::string& strategy, int nodes, int size, const FrameFigures& f, std::uint64_t rss,
@@ -30,6 +30,8 @@ BenchCell summarise(const std::string& strategy, int nodes, int size, const Fram
   c.compositeSeconds = median(f.composite);
   c.wallSeconds = median(f.wall);
   c.modelledSeconds = median(f.modelled);
+  c.commSeconds = median(f.comm);
+  c.renderImbalance = median(f.imbalance);
   c.samples = median(f.samples);
   c.samplesPerSecond = c.wallSeconds > 0 ? c.samples / c.wallSeconds : 0.0;
   c.bytesSent = std::uint64_t(median(f.bytes));
@@ -42,22 +44,29 @@ BenchCell summarise(const std::string& strategy, int nodes, int size, const Fram
 
 BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
                          const std::function<void(const BenchProgress&)>& progress, const std::atomic<bool>* stop) {
-  if (o.sizes.empty() || o.nodes.empty() || o.strategies.empty()) throw Error("bench: empty grid");
+  if (o.sizes.empty() || o.nodes.empty() || o.strategies.empty() || o.balances.empty()) throw Error("bench: empty grid");
   if (o.frames < 1) throw Error("bench: --frames must be at least 1");
   BenchResult result;
   BenchProgress p;
-  p.cellsTotal = int(o.strategies.size() * o.nodes.size() * o.sizes.size());
+  p.cellsTotal = int(o.strategies.size() * o.balances.size() * o.nodes.size() * o.sizes.size());
   double totalWeight = 0, doneWeight = 0;
   for (int size : o.sizes) totalWeight += cellWeight(size, o.frames);
-  totalWeight *= double(o.strategies.size() * o.nodes.size());
+  totalWeight *= double(o.strategies.size() * o.balances.size() * o.nodes.size());
   const double start = nowSeconds();
   auto stopped = [&] { return stop && stop->load(std::memory_order_relaxed); };
 
-  for (const std::string& strategy : o.strategies) {
+  for (const std::string& base : o.strategies)
+  for (const std::string& balance : o.balances) {
+    const std::string strategy = balance == "space" ? base : base + "+" + balance;
     for (int nodes : o.nodes) {
       ClusterOptions co = o.cluster;
       co.nodes = nodes;
-      co.strategy = strategy;
+      co.strategy = base;
+      co.balance = balance;
+      co.balanceTransfer = o.base.transfer;
+      co.speeds.clear();
+      for (std::size_t r = 0; !o.speedPattern.empty() && r < std::size_t(nodes); ++r)
+        co.speeds.push_back(o.speedPattern[r % o.speedPattern.size()]);
       VirtualCluster cluster(source, co);
       for (int size : o.sizes) {
         FrameRequest request = o.base;
@@ -77,6 +86,8 @@ BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
             f.composite.push_back(r.stats.compositeMax());
             f.wall.push_back(r.stats.wallSeconds);
             f.modelled.push_back(r.stats.modelledParallelSeconds());
+            f.comm.push_back(r.stats.modelledCommSeconds());
+            f.imbalance.push_back(r.stats.renderMean() > 0 ? r.stats.renderMax() / r.stats.renderMean() : 1.0);
             f.samples.push_back(double(r.stats.samples()));
             f.bytes.push_back(double(r.stats.bytesSent()));
             rss = r.stats.peakRssBytes;
@@ -85,8 +96,10 @@ BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
           p.remainingSeconds = doneWeight > 0 ? p.elapsedSeconds * (totalWeight - doneWeight) / doneWeight : 0.0;
           if (progress) progress(p);
         }
-        if (!f.wall.empty())
+        if (!f.wall.empty()) {
           result.cells.push_back(summarise(strategy, nodes, size, f, rss, cluster.distributeSeconds()));
+          result.cells.back().balance = balance;
+        }
         if (stopped()) {
           result.interrupted = true;
           computeSpeedups(result.cells);

@@ -20,15 +20,19 @@ struct BenchGridOptions {
   std::vector<int> sizes{64, 128, 256, 512};  //!< square images, side in pixels
   std::vector<int> nodes{1, 2, 4, 8, 16, 32, 64, 128, 256, 512};
   std::vector<std::string> strategies{"binary-swap"};
+  //! Plane placements to compare ("space", "cost"); a cost cell's strategy reads "NAME+cost".
+  std::vector<std::string> balances{"space"};
+  //! Relative node speeds, repeated over each cell's P nodes (empty: all 1).
+  std::vector<double> speedPattern;
   int frames = 5;                //!< measured frames per cell; one warm-up frame more is excluded
   float degreesPerFrame = 1.0f;  //!< the azimuth turns this much between frames
   FrameRequest base;             //!< view, transfer function, settings (width/height ignored)
-  ClusterOptions cluster;        //!< partition, threads, sparse (nodes and strategy ignored)
+  ClusterOptions cluster;        //!< partition, threads, sparse, network (nodes, strategy, balance ignored)
 };
 
 //! One cell: medians over the measured frames (maximum over nodes, as the paper reports).
 struct BenchCell {
-  std::string strategy;
+  std::string strategy;           //!< with "+cost" appended for cost-balanced planes
   int nodes = 0, width = 0, height = 0;
   int frames = 0;                 //!< frames measured (fewer than asked if interrupted)
   double renderSeconds = 0;       //!< FrameStats::renderMax
@@ -41,6 +45,9 @@ struct BenchCell {
   std::uint64_t peakRssBytes = 0; //!< process peak so far
   double distributeSeconds = 0;   //!< the cluster's one-off data distribution
   double speedup = 0;             //!< modelled: P0 * T(P0) / T(P), P0 the grid's smallest P; 0 if unknown
+  double commSeconds = 0;         //!< FrameStats::modelledCommSeconds (0 on the ideal network)
+  double renderImbalance = 0;     //!< render max / mean over nodes: 1 is perfect balance
+  std::string balance = "space";  //!< plane placement of the cell's partition
 };
 
 struct BenchProgress {

@@ -101,6 +101,9 @@ std::string formatCellDetails(const std::vector<BenchCell>& cells) {
       out += row(cells, a, s, size, "wall ms", "%10.2f", [](const BenchCell& c) { return c.wallSeconds * 1e3; });
       out += row(cells, a, s, size, "Msamples/s", "%10.1f", [](const BenchCell& c) { return c.samplesPerSecond * 1e-6; });
       out += row(cells, a, s, size, "MB sent", "%10.2f", [](const BenchCell& c) { return double(c.bytesSent) * 1e-6; });
+      out += row(cells, a, s, size, "render max/mean", "%10.2f", [](const BenchCell& c) { return c.renderImbalance; });
+      if (std::any_of(cells.begin(), cells.end(), [](const BenchCell& c) { return c.commSeconds > 0; }))
+        out += row(cells, a, s, size, "comm ms", "%10.2f", [](const BenchCell& c) { return c.commSeconds * 1e3; });
       out += row(cells, a, s, size, "modelled ms", "%10.2f", [](const BenchCell& c) { return c.modelledSeconds * 1e3; });
       out += row(cells, a, s, size, "speedup", "%10.2f", [](const BenchCell& c) { return c.speedup; });
     }
@@ -115,14 +118,14 @@ std::string formatCellDetails(const std::vector<BenchCell>& cells) {
 std::string benchCsv(const BenchContext& ctx, const std::vector<BenchCell>& cells) {
   std::string out =
       "dataset,strategy,nodes,width,height,frames,render_s,composite_s,wall_s,modelled_s,speedup,samples,"
-      "samples_per_s,bytes_sent,peak_rss_bytes,distribute_s\n";
+      "samples_per_s,bytes_sent,peak_rss_bytes,distribute_s,balance,comm_s,render_imbalance\n";
   char buf[512];
   for (const BenchCell& c : cells) {
-    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.6g,%.0f,%.6g,%llu,%llu,%.9g\n",
+    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.6g,%.0f,%.6g,%llu,%llu,%.9g,%s,%.9g,%.6g\n",
                   csvField(ctx.dataset).c_str(), csvField(c.strategy).c_str(), c.nodes, c.width, c.height, c.frames,
                   c.renderSeconds, c.compositeSeconds, c.wallSeconds, c.modelledSeconds, c.speedup, c.samples,
                   c.samplesPerSecond, (unsigned long long)c.bytesSent, (unsigned long long)c.peakRssBytes,
-                  c.distributeSeconds);
+                  c.distributeSeconds, c.balance.c_str(), c.commSeconds, c.renderImbalance);
     out += buf;
   }
   return out;
@@ -154,7 +157,10 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
                      {"samples_per_s", c.samplesPerSecond},
                      {"bytes_sent", c.bytesSent},
                      {"peak_rss_bytes", c.peakRssBytes},
-                     {"distribute_s", c.distributeSeconds}});
+                     {"distribute_s", c.distributeSeconds},
+                     {"balance", c.balance},
+                     {"comm_s", c.commSeconds},
+                     {"render_imbalance", c.renderImbalance}});
   j["cells"] = std::move(cells);
   return j;
 }
