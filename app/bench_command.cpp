@@ -32,7 +32,7 @@ struct BenchOptions {
   std::string dataset, volume, sizes = "64,128,256,512", nodes = "1,2,4,8,16,32,64,128,256,512";
   std::string composite = "binary-swap", tf, shading = "on", partition = "kd", outDir = "bench-out";
   std::string head = "../shared/data/headsq.nhdr", view = "30,15";
-  std::string balance = "space", speeds, network = "ideal";
+  std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1";
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
   bool sparse = false, micro = false, paper = false, targets = false;
@@ -88,7 +88,8 @@ std::string commandLine(const BenchOptions& o) {
                 o.shading.c_str(), double(o.ert), o.view.c_str(), o.partition.c_str(), o.sparse ? " --sparse" : "",
                 o.threads);
   return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --balance " + o.balance +
-         (o.speeds.empty() ? "" : " --speeds " + o.speeds) + " --network " + o.network + " --out-dir " + o.outDir;
+         (o.speeds.empty() ? "" : " --speeds " + o.speeds) + " --bricks-per-node " + o.bricksPerNode +
+         " --network " + o.network + " --out-dir " + o.outDir;
 }
 
 void runGrid(const BenchOptions& o) {
@@ -119,6 +120,7 @@ void runGrid(const BenchOptions& o) {
   g.cluster.threads = o.threads;
   g.cluster.network = networkModel(o.network);
   g.balances = parseNames(o.balance);
+  g.bricksPerNode = parseList<int>(o.bricksPerNode, "--bricks-per-node", 1, 64);
   for (const std::string& b : g.balances)
     if (b != "space" && b != "cost") throw Error("--balance \"" + o.balance + "\": expected space, cost or space,cost");
   for (const std::string& item : parseNames(o.speeds)) {
@@ -208,6 +210,7 @@ void addBenchCommand(CLI::App& app) {
       "  kdswap bench --dataset turbulence:256 --composite binary-swap,binary-tree --frames 3\n"
       "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 1,8,64 --balance space,cost\n"
       "  kdswap bench --dataset phantom:128 --sizes 256 --nodes 1,8,64 --network ethernet10\n"
+      "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 8 --speeds 1,0.25 --bricks-per-node 1,4\n"
       "  kdswap bench --micro      kernels alone: ray casting per core, over vs memcpy, binary-swap\n"
       "  kdswap bench --paper      the paper's sourced cells beside ours\n"
       "  kdswap bench --targets    issue 6's speed targets, MET or MISSED\n"
@@ -231,6 +234,9 @@ void addBenchCommand(CLI::App& app) {
                   "Plane placements to compare: space, cost or space,cost (cost cells read STRATEGY+cost)")
       ->capture_default_str();
   cmd->add_option("--speeds", o->speeds, "Relative node speeds, repeated over each cell's nodes, e.g. 1,0.5");
+  cmd->add_option("--bricks-per-node", o->bricksPerNode,
+                  "Over-decomposition levels to compare, e.g. 1,4 (cells with M > 1 read STRATEGY+bricksM)")
+      ->capture_default_str();
   cmd->add_option("--network", o->network, "Network model for modelled time: ideal, cm5 or ethernet10")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads (0 = every core)")->capture_default_str();

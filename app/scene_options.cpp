@@ -95,6 +95,10 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--speeds", o.speeds,
                   "Relative node speeds, e.g. 1,0.5 (repeated over the P nodes): partitions follow them and "
                   "modelled times divide each node's work by its speed");
+  cmd->add_option("--bricks-per-node", o.bricksPerNode,
+                  "Over-decomposition: cut each node's brick into this many (1..64), handed out on demand "
+                  "each frame so fast or idle nodes take work from busy ones")
+      ->capture_default_str();
   cmd->add_option("--network", o.network,
                   "Network model for the modelled time: ideal (no cost), cm5 (CM-5 fat tree: 20/10/5 MB/s), "
                   "ethernet10 (10 Mbit/s shared by all nodes)")
@@ -187,6 +191,8 @@ Scene buildScene(const SceneOptions& o) {
   if (!o.nodeExecution.empty()) c.execution = parseNodeExecution(o.nodeExecution);
   if (o.balance != "space" && o.balance != "cost") throw Error("--balance \"" + o.balance + "\": expected space or cost");
   c.balance = o.balance;
+  if (o.bricksPerNode < 1 || o.bricksPerNode > 64) throw Error("--bricks-per-node must be from 1 to 64");
+  c.bricksPerNode = o.bricksPerNode;
   c.balanceTransfer = r.transfer;
   c.balanceRange = resolveValueRange(r.settings, info);
   if (!o.speeds.empty()) {

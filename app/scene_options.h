@@ -40,6 +40,7 @@ struct SceneOptions {
   std::string balance = "space";
   std::string speeds;          //!< "1,0.5,..." per node, repeated to P values; empty = all 1
   std::string network = "ideal";
+  int bricksPerNode = 1;
 };
 
 struct Scene {

@@ -141,14 +141,18 @@ TEST_CASE("the grid compares space and cost planes, with node speeds and a netwo
   o.nodes = {1, 4};
   o.frames = 1;
   o.balances = {"space", "cost"};
+  o.bricksPerNode = {1, 2};
   o.speedPattern = {1.0, 0.5};
   o.cluster.network = networkModel("ethernet10");
   o.base.transfer = loadTransferFunction("grayscale");
   const BenchResult r = runBenchGrid(*volume, o, {}, nullptr);
-  REQUIRE(r.cells.size() == 4);
+  REQUIRE(r.cells.size() == 8);
   CHECK(r.cells[0].strategy == "binary-swap");
-  CHECK(r.cells[2].strategy == "binary-swap+cost");
-  CHECK(r.cells[2].balance == "cost");
+  CHECK(r.cells[2].strategy == "binary-swap+bricks2");
+  CHECK(r.cells[2].bricksPerNode == 2);
+  CHECK(r.cells[4].strategy == "binary-swap+cost");
+  CHECK(r.cells[4].balance == "cost");
+  CHECK(r.cells[6].strategy == "binary-swap+cost+bricks2");
   for (const BenchCell& c : r.cells) {
     CHECK(c.renderImbalance >= 1.0);
     // One node sends nothing; four nodes swap over the shared Ethernet, which the model charges.
@@ -158,7 +162,7 @@ TEST_CASE("the grid compares space and cost planes, with node speeds and a netwo
   BenchContext ctx;
   ctx.dataset = "blobs";
   const std::string csv = benchCsv(ctx, r.cells);
-  CHECK(csv.find(",balance,comm_s,render_imbalance\n") != std::string::npos);
+  CHECK(csv.find(",balance,comm_s,render_imbalance,bricks_per_node\n") != std::string::npos);
   CHECK(csv.find(",cost,") != std::string::npos);
   CHECK(formatCellDetails(r.cells).find("comm ms") != std::string::npos);
 }

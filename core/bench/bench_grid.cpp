@@ -44,25 +44,30 @@ BenchCell summarise(const std::string& strategy, int nodes, int size, const Fram
 
 BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
                          const std::function<void(const BenchProgress&)>& progress, const std::atomic<bool>* stop) {
-  if (o.sizes.empty() || o.nodes.empty() || o.strategies.empty() || o.balances.empty()) throw Error("bench: empty grid");
+  if (o.sizes.empty() || o.nodes.empty() || o.strategies.empty() || o.balances.empty() || o.bricksPerNode.empty())
+    throw Error("bench: empty grid");
   if (o.frames < 1) throw Error("bench: --frames must be at least 1");
   BenchResult result;
   BenchProgress p;
-  p.cellsTotal = int(o.strategies.size() * o.balances.size() * o.nodes.size() * o.sizes.size());
+  p.cellsTotal = int(o.strategies.size() * o.balances.size() * o.bricksPerNode.size() * o.nodes.size() *
+                     o.sizes.size());
   double totalWeight = 0, doneWeight = 0;
   for (int size : o.sizes) totalWeight += cellWeight(size, o.frames);
-  totalWeight *= double(o.strategies.size() * o.balances.size() * o.nodes.size());
+  totalWeight *= double(o.strategies.size() * o.balances.size() * o.bricksPerNode.size() * o.nodes.size());
   const double start = nowSeconds();
   auto stopped = [&] { return stop && stop->load(std::memory_order_relaxed); };
 
   for (const std::string& base : o.strategies)
-  for (const std::string& balance : o.balances) {
-    const std::string strategy = balance == "space" ? base : base + "+" + balance;
+  for (const std::string& balance : o.balances)
+  for (int bricks : o.bricksPerNode) {
+    const std::string strategy = base + (balance == "space" ? "" : "+" + balance) +
+                                 (bricks > 1 ? "+bricks" + std::to_string(bricks) : "");
     for (int nodes : o.nodes) {
       ClusterOptions co = o.cluster;
       co.nodes = nodes;
       co.strategy = base;
       co.balance = balance;
+      co.bricksPerNode = bricks;
       co.balanceTransfer = o.base.transfer;
       co.speeds.clear();
       for (std::size_t r = 0; !o.speedPattern.empty() && r < std::size_t(nodes); ++r)
@@ -99,6 +104,7 @@ BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
         if (!f.wall.empty()) {
           result.cells.push_back(summarise(strategy, nodes, size, f, rss, cluster.distributeSeconds()));
           result.cells.back().balance = balance;
+          result.cells.back().bricksPerNode = bricks;
         }
         if (stopped()) {
           result.interrupted = true;

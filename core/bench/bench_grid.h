@@ -22,6 +22,8 @@ struct BenchGridOptions {
   std::vector<std::string> strategies{"binary-swap"};
   //! Plane placements to compare ("space", "cost"); a cost cell's strategy reads "NAME+cost".
   std::vector<std::string> balances{"space"};
+  //! Over-decomposition levels to compare; a cell with M > 1 reads "NAME+bricksM".
+  std::vector<int> bricksPerNode{1};
   //! Relative node speeds, repeated over each cell's P nodes (empty: all 1).
   std::vector<double> speedPattern;
   int frames = 5;                //!< measured frames per cell; one warm-up frame more is excluded
@@ -48,6 +50,7 @@ struct BenchCell {
   double commSeconds = 0;         //!< FrameStats::modelledCommSeconds (0 on the ideal network)
   double renderImbalance = 0;     //!< render max / mean over nodes: 1 is perfect balance
   std::string balance = "space";  //!< plane placement of the cell's partition
+  int bricksPerNode = 1;          //!< over-decomposition of the cell's cluster
 };
 
 struct BenchProgress {

@@ -118,14 +118,15 @@ std::string formatCellDetails(const std::vector<BenchCell>& cells) {
 std::string benchCsv(const BenchContext& ctx, const std::vector<BenchCell>& cells) {
   std::string out =
       "dataset,strategy,nodes,width,height,frames,render_s,composite_s,wall_s,modelled_s,speedup,samples,"
-      "samples_per_s,bytes_sent,peak_rss_bytes,distribute_s,balance,comm_s,render_imbalance\n";
+      "samples_per_s,bytes_sent,peak_rss_bytes,distribute_s,balance,comm_s,render_imbalance,bricks_per_node\n";
   char buf[512];
   for (const BenchCell& c : cells) {
-    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.6g,%.0f,%.6g,%llu,%llu,%.9g,%s,%.9g,%.6g\n",
+    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.6g,%.0f,%.6g,%llu,%llu,%.9g,%s,%.9g,%.6g,%d\n",
                   csvField(ctx.dataset).c_str(), csvField(c.strategy).c_str(), c.nodes, c.width, c.height, c.frames,
                   c.renderSeconds, c.compositeSeconds, c.wallSeconds, c.modelledSeconds, c.speedup, c.samples,
                   c.samplesPerSecond, (unsigned long long)c.bytesSent, (unsigned long long)c.peakRssBytes,
-                  c.distributeSeconds, c.balance.c_str(), c.commSeconds, c.renderImbalance);
+                  c.distributeSeconds, c.balance.c_str(), c.commSeconds, c.renderImbalance,
+                  c.bricksPerNode);
     out += buf;
   }
   return out;
@@ -160,7 +161,8 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
                      {"distribute_s", c.distributeSeconds},
                      {"balance", c.balance},
                      {"comm_s", c.commSeconds},
-                     {"render_imbalance", c.renderImbalance}});
+                     {"render_imbalance", c.renderImbalance},
+                     {"bricks_per_node", c.bricksPerNode}});
   j["cells"] = std::move(cells);
   return j;
 }

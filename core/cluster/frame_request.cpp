@@ -10,6 +10,7 @@ FramePlan::FramePlan(const FrameRequest& r, const KdTree& tree, const glm::vec3&
       table(r.transfer, r.settings.stepVoxels),
       order(tree.order(camera, spacing)),
       valueRange(range),
-      strategy(s) {}
+      strategy(s),
+      spacing(spacing) {}
 
 }  // namespace kdswap

@@ -8,6 +8,7 @@
 
 #include "core/camera/camera.h"
 #include "core/camera/view.h"
+#include "core/cluster/brick_schedule.h"
 #include "core/composite/strategy.h"
 #include "core/partition/kd_tree.h"
 #include "core/render/render_settings.h"
@@ -34,6 +35,8 @@ struct FramePlan {
   VisibilityOrder order;
   glm::vec2 valueRange;
   const Strategy& strategy;
+  glm::vec3 spacing;
+  const BrickSchedule* bricks = nullptr;  //!< over-decomposition: who renders which brick
   Rect frame() const { return camera.frame(); }
 };
 

@@ -8,19 +8,24 @@
 
 namespace kdswap {
 
-void distributeBricks(const VolumeSource& source, const KdTree& tree, Communicator& host) {
+namespace {
+
+Message readBrick(const VolumeSource& source, const VoxelBox& owned, int piece) {
   const VolumeInfo& info = source.info();
-  for (int r = 0; r < tree.ranks(); ++r) {
-    const VoxelBox& owned = tree.brick(r);
-    const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
-    Message m;
-    m.header = {owned.lo.x, owned.lo.y, owned.lo.z, owned.hi.x, owned.hi.y, owned.hi.z,
-                info.dims.x, info.dims.y, info.dims.z};
-    m.payload.resize(3 + std::size_t(stored.count()));
-    m.payload[0] = info.spacing.x, m.payload[1] = info.spacing.y, m.payload[2] = info.spacing.z;
-    if (!stored.empty()) source.read(stored, m.payload.data() + 3);
-    host.send(r, kBrickTag, std::move(m));
-  }
+  const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
+  std::vector<float> values(std::size_t(stored.count()));
+  if (!stored.empty()) source.read(stored, values.data());
+  return brickMessage(owned, info.dims, info.spacing, std::move(values), piece);
+}
+
+}  // namespace
+
+void distributeBricks(const VolumeSource& source, const KdTree& tree, Communicator& host) {
+  for (int r = 0; r < tree.ranks(); ++r) host.send(r, kBrickTag, readBrick(source, tree.brick(r), -1));
+}
+
+void distributePieces(const VolumeSource& source, const BrickLayout& layout, Communicator& host) {
+  for (int b = 0; b < layout.bricks(); ++b) host.send(layout.home(b), kBrickTag, readBrick(source, layout.box(b), b));
 }
 
 Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<Rect>* regions) {

@@ -6,6 +6,7 @@
 
 #include "core/comm/communicator.h"
 #include "core/image/image.h"
+#include "core/partition/brick_layout.h"
 #include "core/partition/kd_tree.h"
 #include "core/volume/volume_source.h"
 
@@ -14,6 +15,8 @@ namespace kdswap {
 //! Sends node r the voxels of its brick with the replicated layers. Only one brick's voxels are
 //! held by the host at a time; for uncompressed files only that brick's bytes are read.
 void distributeBricks(const VolumeSource& source, const KdTree& tree, Communicator& host);
+//! Over-decomposition: sends every sub-brick to its home node, one brick in memory at a time.
+void distributePieces(const VolumeSource& source, const BrickLayout& layout, Communicator& host);
 
 //! Assembles the final frame from the nodes' tile messages (one per node). Checks that the tiles'
 //! regions partition the frame (every pixel comes from exactly one tile); throws kdswap::Error

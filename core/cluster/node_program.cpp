@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/comm/mailbox.h"
 #include "core/composite/image_message.h"
 #include "core/render/ray_caster.h"
 #include "core/util/clock.h"
@@ -57,19 +58,99 @@ class NodePhaseObserver : public PhaseObserver {
 
 }  // namespace
 
-void receiveBrick(NodeState& node, Communicator& comm) {
-  Message m = comm.receive(Communicator::kHost, kBrickTag);
-  // header: owned lo (3), owned hi (3), volume dims (3); spacing travels as the first 3 payload values.
-  if (m.header.size() != 9 || m.payload.size() < 3)
+Message brickMessage(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing,
+                     std::vector<float> storedValues, int piece) {
+  Message m;
+  m.header = {owned.lo.x, owned.lo.y, owned.lo.z, owned.hi.x, owned.hi.y, owned.hi.z, dims.x, dims.y, dims.z};
+  if (piece >= 0) m.header.push_back(piece);
+  m.payload.reserve(3 + storedValues.size());
+  m.payload = {spacing.x, spacing.y, spacing.z};
+  m.payload.insert(m.payload.end(), storedValues.begin(), storedValues.end());
+  return m;
+}
+
+void receiveBrick(NodeState& node, Communicator& comm, int source) {
+  Message m = comm.receive(source, kBrickTag);
+  // header: owned lo (3), owned hi (3), volume dims (3) [, piece]; spacing travels as the first 3
+  // payload values.
+  if ((m.header.size() != 9 && m.header.size() != 10) || m.payload.size() < 3)
     throw Error("node " + std::to_string(comm.rank()) + ": malformed brick message");
   const VoxelBox owned{glm::ivec3(int(m.header[0]), int(m.header[1]), int(m.header[2])),
                        glm::ivec3(int(m.header[3]), int(m.header[4]), int(m.header[5]))};
   const glm::ivec3 dims(int(m.header[6]), int(m.header[7]), int(m.header[8]));
   const glm::vec3 spacing(m.payload[0], m.payload[1], m.payload[2]);
   m.payload.erase(m.payload.begin(), m.payload.begin() + 3);
+  if (Brick::storedBoxFor(owned, dims).count() != std::int64_t(m.payload.size()))
+    throw Error("node " + std::to_string(comm.rank()) + ": brick message holds the wrong number of voxels");
   node.rank = comm.rank();
-  node.brick = Brick(owned, dims, spacing, std::move(m.payload));
+  if (m.header.size() == 10)
+    node.pieces.insert_or_assign(int(m.header[9]), Brick(owned, dims, spacing, std::move(m.payload)));
+  else
+    node.brick = Brick(owned, dims, spacing, std::move(m.payload));
 }
+
+namespace {
+
+// Over-decomposition: ship the bricks others render this frame, render the assigned bricks,
+// send each foreign brick's image to its home and composite the home's bricks front to back
+// (one "bricks" phase). The result is exactly the partial image of the node's whole brick.
+Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, NodeReport& report,
+                   NodePhaseObserver& observer) {
+  const BrickSchedule& s = *plan.bricks;
+  const BrickLayout& layout = *s.layout;
+  const int rank = comm.rank();
+  for (auto [brick, dest] : s.ships[std::size_t(rank)]) {
+    const Brick& b = node.pieces.at(brick);
+    comm.send(dest, kBrickTag, brickMessage(b.owned(), b.volumeDims(), b.spacing(), b.storedValues(), brick));
+  }
+  for (int i = 0; i < s.receives[std::size_t(rank)]; ++i) receiveBrick(node, comm, Mailbox::kAnySource);
+
+  std::vector<std::pair<int, Image>> rendered;
+  for (int brick : s.renders[std::size_t(rank)]) {
+    const auto it = node.pieces.find(brick);
+    if (it == node.pieces.end())
+      throw Error("node " + std::to_string(rank) + ": was given brick " + std::to_string(brick) + " but does not hold it");
+    RenderCounters counters;
+    const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange);
+    rendered.emplace_back(brick, caster.render(plan.camera, counters));
+    report.renderSeconds += counters.seconds;
+    report.rays += counters.rays;
+    report.samples += counters.samples;
+    report.brickSeconds.emplace_back(brick, counters.seconds);
+  }
+
+  observer.beginPhase("bricks", -1);
+  std::map<int, Image> mine;
+  for (auto& [brick, image] : rendered) {
+    if (layout.home(brick) == rank) {
+      mine.emplace(brick, std::move(image));
+      continue;
+    }
+    Message m = imageToMessage(std::move(image));
+    m.header.push_back(brick);
+    comm.send(layout.home(brick), kPieceImageTag, std::move(m));
+  }
+  while (int(mine.size()) < layout.perNode()) {
+    Message m = comm.receive(Mailbox::kAnySource, kPieceImageTag);
+    if (m.header.size() != 5) throw Error("node " + std::to_string(rank) + ": malformed brick image");
+    const int brick = int(m.header[4]);
+    m.header.resize(4);
+    if (layout.home(brick) != rank || mine.count(brick))
+      throw Error("node " + std::to_string(rank) + ": unexpected image of brick " + std::to_string(brick));
+    mine.emplace(brick, imageFromMessage(m));
+  }
+  Rect bounds;
+  for (const auto& [brick, image] : mine)
+    if (!image.rect().empty()) bounds = bounds.empty() ? image.rect() : bounds.unite(image.rect());
+  Image partial(bounds);
+  std::int64_t pixels = 0;
+  for (int brick : layout.frontToBack(rank, plan.camera, plan.spacing))
+    pixels += compositeInto(partial, mine.at(brick), /*otherInFront=*/false);
+  observer.endPhase(plan.frame(), partial, pixels);
+  return partial;
+}
+
+}  // namespace
 
 NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& plan, PhaseRecord* record) {
   NodeReport report;
@@ -77,14 +158,19 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
   std::vector<PhaseCell>* cells = record ? &record->cells[std::size_t(comm.rank())] : nullptr;
   NodePhaseObserver observer(comm, report, cells);
 
-  RenderCounters counters;
-  const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange);
-  Image partial = caster.render(plan.camera, counters);
-  report.renderSeconds = counters.seconds;
-  report.rays = counters.rays;
-  report.samples = counters.samples;
+  Image partial;
+  if (plan.bricks) {
+    partial = renderPieces(node, comm, plan, report, observer);
+  } else {
+    RenderCounters counters;
+    const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange);
+    partial = caster.render(plan.camera, counters);
+    report.renderSeconds = counters.seconds;
+    report.rays = counters.rays;
+    report.samples = counters.samples;
+    if (cells) cells->push_back(PhaseCell{"render", -1, partial.rect(), partial, 0});
+  }
   observer.noteImage(partial);
-  if (cells) cells->push_back(PhaseCell{"render", -1, partial.rect(), partial, 0});
 
   Tile tile = plan.strategy.compose(std::move(partial), plan.frame(), plan.order, comm, observer);
 
@@ -92,7 +178,9 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
   const Rect& r = tile.region;
   out.header.insert(out.header.end(), {r.x, r.y, r.w, r.h});
   comm.send(Communicator::kHost, kTileTag, std::move(out));
-  report.privateBytes = node.brick.bytes() + observer.largestImage();
+  std::uint64_t brickBytes = node.brick.bytes();
+  for (const auto& [id, piece] : node.pieces) brickBytes += piece.bytes();
+  report.privateBytes = brickBytes + observer.largestImage();
   return report;
 }
 

@@ -3,6 +3,9 @@
 // strategy and sends its finished tile to the host. It touches only its own NodeState.
 #pragma once
 
+#include <map>
+#include <vector>
+
 #include "core/cluster/frame_request.h"
 #include "core/cluster/phase_record.h"
 #include "core/comm/communicator.h"
@@ -14,15 +17,25 @@ namespace kdswap {
 //! Message tags of the host/node protocol.
 inline constexpr int kBrickTag = 10;
 inline constexpr int kTileTag = 11;
+inline constexpr int kPieceImageTag = 12;  //!< over-decomposition: a brick's image sent to its home
 
 //! One node's private memory, alive across frames: the data, once distributed, is left intact.
 struct NodeState {
   int rank = -1;
   Brick brick;
+  //! Over-decomposition: sub-bricks by global brick number, its own ones and those shipped to it
+  //! to render (kept for later frames, so a brick travels to a node once).
+  std::map<int, Brick> pieces;
 };
 
-//! Receives this node's brick from the host and builds its gradients (node's own memory).
-void receiveBrick(NodeState& node, Communicator& comm);
+//! A brick message: the voxels of Brick::storedBoxFor(owned, dims), with `piece` >= 0 for an
+//! over-decomposed sub-brick (its global number), -1 for a node's one brick.
+Message brickMessage(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing,
+                     std::vector<float> storedValues, int piece = -1);
+
+//! Receives one brick message (from the host, or `source`) and builds its gradients in the node's
+//! own memory: node.brick, or node.pieces[piece] for a sub-brick.
+void receiveBrick(NodeState& node, Communicator& comm, int source = Communicator::kHost);
 
 //! Renders and composites one frame; sends the tile to the host. With `record` non-null, fills
 //! record->cells[rank] (this node's row only).

@@ -73,20 +73,20 @@ int validatedNodes(int nodes) {
 
 //! The partition in the shape the strategy groups nodes in (radix-k, 2-3 swap and telescoping
 //! need subtrees other than pairs), so every group a strategy composites is a k-d subtree.
-KdTree buildTree(const VolumeSource& source, const ClusterOptions& options) {
+//! The work estimate for --balance cost (null for space).
+std::shared_ptr<const CostField> costFieldFor(const VolumeSource& source, const ClusterOptions& options) {
+  if (options.balance == "space") return nullptr;
+  if (options.balance != "cost") throw Error("balance \"" + options.balance + "\": expected space or cost");
   const VolumeInfo& info = source.info();
+  const glm::vec2 range = options.balanceRange.y > options.balanceRange.x ? options.balanceRange
+                                                                          : glm::vec2(info.minValue, info.maxValue);
+  return std::make_shared<CostField>(CostField::estimate(source, TransferTable(options.balanceTransfer, 1.0f), range));
+}
+
+KdTree buildTree(const VolumeInfo& info, const ClusterOptions& options, std::shared_ptr<const CostField> cost) {
   const TreeShape shape = createStrategy(options.strategy, options.composite)->treeShape(validatedNodes(options.nodes));
-  PartitionBalance balance;
-  balance.rankSpeeds = options.speeds;
-  if (options.balance == "cost") {
-    const glm::vec2 range = options.balanceRange.y > options.balanceRange.x ? options.balanceRange
-                                                                            : glm::vec2(info.minValue, info.maxValue);
-    balance.cost = std::make_shared<CostField>(
-        CostField::estimate(source, TransferTable(options.balanceTransfer, 1.0f), range));
-  } else if (options.balance != "space") {
-    throw Error("balance \"" + options.balance + "\": expected space or cost");
-  }
-  return KdTree::build(info.dims, options.nodes, options.partition, options.slabAxis, shape, balance);
+  return KdTree::build(info.dims, options.nodes, options.partition, options.slabAxis, shape,
+                       PartitionBalance{std::move(cost), options.speeds});
 }
 
 }  // namespace
@@ -100,22 +100,38 @@ NodeExecution parseNodeExecution(const std::string& text) {
 VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions& options)
     : options_(options),
       info_(source.info()),
-      tree_(buildTree(source, options)),
+      cost_(costFieldFor(source, options)),
+      tree_(buildTree(info_, options, cost_)),
+      layout_(tree_, options.bricksPerNode, PartitionBalance{cost_, {}}),
       strategy_(createStrategy(options.strategy, options.composite)),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
       network_(options.nodes, waitModeFor(options.execution)),
       nodes_(std::size_t(options.nodes)) {
   const double start = nowSeconds();
   InprocCommunicator host(network_, Communicator::kHost);
+  const bool pieces = layout_.perNode() > 1;
   runOnNodes(
       [&](int rank, Communicator& comm) {
-        receiveBrick(nodes_[std::size_t(rank)], comm);
+        for (int i = 0; i < layout_.perNode(); ++i) receiveBrick(nodes_[std::size_t(rank)], comm);
       },
-      true, [&] { distributeBricks(source, tree_, host); });
+      true, [&] { pieces ? distributePieces(source, layout_, host) : distributeBricks(source, tree_, host); });
+  if (pieces) {
+    // First frame's estimate: the cost field's, or the cells of each brick; later frames use the
+    // render seconds measured per brick.
+    const CostField uniform = cost_ ? CostField{} : CostField::uniform(info_.dims);
+    for (int b = 0; b < layout_.bricks(); ++b) brickCost_.push_back((cost_ ? *cost_ : uniform).cost(layout_.box(b)));
+    held_.assign(std::size_t(options.nodes), {});
+  }
   distributeSeconds_ = nowSeconds() - start;
 }
 
 VirtualCluster::~VirtualCluster() = default;
+
+void VirtualCluster::setBrickCosts(std::vector<double> costs) {
+  if (costs.size() != brickCost_.size())
+    throw Error(std::to_string(costs.size()) + " brick costs for " + std::to_string(brickCost_.size()) + " bricks");
+  brickCost_ = std::move(costs);
+}
 
 InprocCommunicator::SendFilter VirtualCluster::faultFilter(int rank) {
   const FaultPlan fault = fault_;
@@ -191,7 +207,22 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
     throw Error("image size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
                 ": each side must be between 1 and 16384");
   const double start = nowSeconds();
-  const FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
+  FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
+  BrickSchedule schedule;
+  std::vector<std::set<int>> heldBefore;
+  if (layout_.perNode() > 1) {
+    heldBefore = held_;
+    schedule = scheduleBricks(layout_, brickCost_, options_.speeds, held_);
+    plan.bricks = &schedule;
+  }
+  struct RestoreHeld {  // a failed frame may not have shipped its bricks: ship them again next time
+    std::vector<std::set<int>>& held;
+    std::vector<std::set<int>>& before;
+    bool done = false;
+    ~RestoreHeld() {
+      if (!done && !before.empty()) held = std::move(before);
+    }
+  } restoreHeld{held_, heldBefore};
 
   FrameResult result;
   if (request.recordPhases) {
@@ -241,6 +272,9 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   s.gatherSeconds = end - gatherStart;
   s.distributeSeconds = distributeSeconds_;
   s.peakRssBytes = peakResidentBytes();
+  restoreHeld.done = true;
+  for (const NodeReport& n : reports)
+    for (const auto& [brick, seconds] : n.brickSeconds) brickCost_[std::size_t(brick)] = seconds;
   s.network = options_.network;
   if (!options_.speeds.empty())
     for (NodeReport& n : reports) n.speed = options_.speeds[std::size_t(n.rank)];

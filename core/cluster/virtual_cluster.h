@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "core/composite/registry.h"
 #include "core/metrics/frame_stats.h"
 #include "core/metrics/network_model.h"
+#include "core/partition/brick_layout.h"
 #include "core/partition/kd_tree.h"
 #include "core/transfer/transfer_function.h"
 #include "core/volume/volume_source.h"
@@ -60,6 +62,9 @@ struct ClusterOptions {
   //! gets twice the work; modelled times divide each node's measured work by its speed.
   std::vector<double> speeds;
   NetworkModel network;  //!< costs each phase's messages in the modelled time
+  //! Over-decomposition: each node's brick is cut into this many sub-bricks (1 = off, up to 64),
+  //! handed out on demand each frame (see BrickSchedule) and composited at their home node.
+  int bricksPerNode = 1;
 #if defined(KDSWAP_CHECKS) && KDSWAP_CHECKS
   static constexpr bool kChecksumsByDefault = true;
 #else
@@ -85,6 +90,12 @@ class VirtualCluster {
   //! frame stalls; the cluster stays usable for the next frame.
   FrameResult renderFrame(const FrameRequest& request);
 
+  //! Over-decomposition: per brick, the estimated render seconds the next hand-out starts from.
+  const std::vector<double>& brickCosts() const { return brickCost_; }
+  //! Test-only: replaces those estimates (e.g. to force work stealing).
+  void setBrickCosts(std::vector<double> costs);
+  const BrickLayout& layout() const { return layout_; }
+
   //! Test-only: the next frame suffers `fault` (one frame only).
   void injectFault(const FaultPlan& fault) { fault_ = fault; }
 
@@ -100,7 +111,11 @@ class VirtualCluster {
 
   ClusterOptions options_;
   VolumeInfo info_;
+  std::shared_ptr<const CostField> cost_;  //!< work estimate when balancing by cost, else null
   KdTree tree_;
+  BrickLayout layout_;                     //!< over-decomposition (perNode 1 when off)
+  std::vector<double> brickCost_;          //!< per brick: estimated render seconds for the next frame
+  std::vector<std::set<int>> held_;        //!< per node: foreign bricks it holds (host's bookkeeping)
   std::unique_ptr<Strategy> strategy_;
   tbb::task_arena arena_;
   InprocNetwork network_;

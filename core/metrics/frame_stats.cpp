@@ -103,6 +103,11 @@ nlohmann::json FrameStats::toJson() const {
     nj["samples"] = n.samples;
     nj["bytes_sent"] = n.bytesSent();
     nj["private_bytes"] = n.privateBytes;
+    if (!n.brickSeconds.empty()) {
+      nlohmann::json bricks = nlohmann::json::array();
+      for (const auto& [brick, seconds] : n.brickSeconds) bricks.push_back(brick);
+      nj["bricks_rendered"] = std::move(bricks);
+    }
     nlohmann::json phases = nlohmann::json::array();
     for (const PhaseStats& p : n.phases)
       phases.push_back({{"label", p.label},

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/image/rect.h"
@@ -29,6 +30,8 @@ struct NodeReport {
   std::uint64_t rays = 0, samples = 0;
   std::uint64_t privateBytes = 0; //!< brick (voxels + gradients) + largest image held
   std::vector<PhaseStats> phases; //!< compositing phases, in order (render not included)
+  //! Over-decomposition: (brick, render seconds) of every brick this node rendered this frame.
+  std::vector<std::pair<int, double>> brickSeconds;
 
   double modelledRenderSeconds() const { return renderSeconds / speed; }
   double compositeSeconds() const {

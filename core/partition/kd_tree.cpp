@@ -114,6 +114,15 @@ int shapeLeaves(const TreeShape& shape) {
 
 KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis, const TreeShape& shape,
                      const PartitionBalance& balance) {
+  return buildOver(VoxelBox{glm::ivec3(0), dims - 1}, dims, ranks, kind, slabAxis, shape, balance);
+}
+
+KdTree KdTree::buildWithin(const VoxelBox& domain, const glm::ivec3& dims, int ranks, const PartitionBalance& balance) {
+  return buildOver(domain, dims, ranks, PartitionKind::KdTree, 2, {}, balance);
+}
+
+KdTree KdTree::buildOver(const VoxelBox& domain, const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis,
+                         const TreeShape& shape, const PartitionBalance& balance) {
   KDSWAP_CHECK_GE(ranks, 1);
   if (!balance.rankSpeeds.empty()) {
     if (int(balance.rankSpeeds.size()) != ranks)
@@ -129,7 +138,6 @@ KdTree KdTree::build(const glm::ivec3& dims, int ranks, PartitionKind kind, int 
   tree.virtualLeaves_ = int(std::bit_floor(unsigned(ranks)));
   tree.leafOf_.assign(ranks, -1);
   tree.nodes_.reserve(std::size_t(2 * ranks));
-  const VoxelBox domain{glm::ivec3(0), dims - 1};
   if (shape.empty()) {
     tree.buildNode(domain, 0, tree.virtualLeaves_, 0, kind, slabAxis);
   } else {

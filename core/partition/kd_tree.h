@@ -76,6 +76,10 @@ class KdTree {
   //! `ranks` leaves. A non-empty `balance.rankSpeeds` must have `ranks` positive entries.
   static KdTree build(const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis = 2,
                       const TreeShape& shape = {}, const PartitionBalance& balance = {});
+  //! A k-d tree over part of the volume (`domain`, a k-d box of a volume of `dims` voxels): used
+  //! to cut one node's brick into sub-bricks (over-decomposition). Ranks are 0 .. ranks-1.
+  static KdTree buildWithin(const VoxelBox& domain, const glm::ivec3& dims, int ranks,
+                            const PartitionBalance& balance = {});
 
   int ranks() const { return ranks_; }
   const glm::ivec3& dims() const { return dims_; }
@@ -87,6 +91,8 @@ class KdTree {
   VisibilityOrder order(const Camera& camera, const glm::vec3& spacing) const;
 
  private:
+  static KdTree buildOver(const VoxelBox& domain, const glm::ivec3& dims, int ranks, PartitionKind kind, int slabAxis,
+                          const TreeShape& shape, const PartitionBalance& balance);
   int buildNode(const VoxelBox& box, int firstLeaf, int leafCount, int depth, PartitionKind kind, int slabAxis);
   int leafNode(const VoxelBox& box, int rank);
   int splitNode(const VoxelBox& box, int depth, PartitionKind kind, int slabAxis, double lowShare,

@@ -26,6 +26,12 @@ VoxelBox Brick::ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims) {
   return v;
 }
 
+std::vector<float> Brick::storedValues() const {
+  std::vector<float> values(voxels_.size());
+  for (std::size_t i = 0; i < voxels_.size(); ++i) values[i] = voxels_[i].value;
+  return values;
+}
+
 Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw)
     : owned_(owned), stored_(storedBoxFor(owned, dims)), dims_(dims), spacing_(spacing) {
   if (owned_.empty()) return;

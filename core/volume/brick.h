@@ -50,6 +50,10 @@ class Brick {
   std::size_t strideY() const { return strideY_; }
   std::size_t strideZ() const { return strideZ_; }
 
+  //! The scalar values of stored() (x fastest): what the brick was built from, so a node can ship
+  //! its brick to another (over-decomposition) and the receiver rebuilds identical voxels.
+  std::vector<float> storedValues() const;
+
   //! Bytes of this node's private memory held by the brick.
   std::uint64_t bytes() const { return voxels_.size() * sizeof(Voxel) + cellRanges_.size() * sizeof(glm::vec2); }
 
