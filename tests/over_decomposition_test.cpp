@@ -103,10 +103,10 @@ TEST_CASE("over-decomposed frames equal the single-node image while bricks move 
           CHECK(maxAbsDifference(result.image, ref.image, ref.image.rect()) <= 1e-5f);
           std::multiset<int> rendered;
           for (const NodeReport& n : result.stats.perNode)
-            for (const auto& [brick, seconds] : n.brickSeconds) rendered.insert(brick);
+            for (const NodeReport::BrickRender& b : n.bricks) rendered.insert(b.brick);
           CHECK(int(rendered.size()) == nodes * perNode);
           CHECK(int(std::set<int>(rendered.begin(), rendered.end()).size()) == nodes * perNode);
-          // After the frame the estimates are the measured render times.
+          // After the frame the estimates are the measured work.
           CHECK(cluster.brickCosts() != costs);
         }
       }

@@ -3,7 +3,8 @@
 // that runs out takes a brick still waiting at the node with the most work left (from the end of
 // its queue). The virtual nodes share two cores, so "runs out" cannot be observed in real time:
 // the hand-out is simulated on a modelled clock per node from each brick's estimated cost (its
-// render time last frame, or the cost field's estimate at first) divided by the node's speed.
+// work last frame: samples taken plus a cost per ray; or the cost field's estimate at first)
+// divided by the node's speed.
 #pragma once
 
 #include <set>

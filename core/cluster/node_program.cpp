@@ -116,7 +116,7 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
     report.renderSeconds += counters.seconds;
     report.rays += counters.rays;
     report.samples += counters.samples;
-    report.brickSeconds.emplace_back(brick, counters.seconds);
+    report.bricks.push_back({brick, counters.seconds, counters.rays, counters.samples});
   }
 
   observer.beginPhase("bricks", -1);

@@ -90,7 +90,7 @@ class VirtualCluster {
   //! frame stalls; the cluster stays usable for the next frame.
   FrameResult renderFrame(const FrameRequest& request);
 
-  //! Over-decomposition: per brick, the estimated render seconds the next hand-out starts from.
+  //! Over-decomposition: per brick, the estimated work (samples + a cost per ray) the next hand-out starts from.
   const std::vector<double>& brickCosts() const { return brickCost_; }
   //! Test-only: replaces those estimates (e.g. to force work stealing).
   void setBrickCosts(std::vector<double> costs);
@@ -114,7 +114,7 @@ class VirtualCluster {
   std::shared_ptr<const CostField> cost_;  //!< work estimate when balancing by cost, else null
   KdTree tree_;
   BrickLayout layout_;                     //!< over-decomposition (perNode 1 when off)
-  std::vector<double> brickCost_;          //!< per brick: estimated render seconds for the next frame
+  std::vector<double> brickCost_;          //!< per brick: estimated work for the next frame
   std::vector<std::set<int>> held_;        //!< per node: foreign bricks it holds (host's bookkeeping)
   std::unique_ptr<Strategy> strategy_;
   tbb::task_arena arena_;

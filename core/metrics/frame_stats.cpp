@@ -103,9 +103,9 @@ nlohmann::json FrameStats::toJson() const {
     nj["samples"] = n.samples;
     nj["bytes_sent"] = n.bytesSent();
     nj["private_bytes"] = n.privateBytes;
-    if (!n.brickSeconds.empty()) {
+    if (!n.bricks.empty()) {
       nlohmann::json bricks = nlohmann::json::array();
-      for (const auto& [brick, seconds] : n.brickSeconds) bricks.push_back(brick);
+      for (const NodeReport::BrickRender& b : n.bricks) bricks.push_back(b.brick);
       nj["bricks_rendered"] = std::move(bricks);
     }
     nlohmann::json phases = nlohmann::json::array();

@@ -30,8 +30,13 @@ struct NodeReport {
   std::uint64_t rays = 0, samples = 0;
   std::uint64_t privateBytes = 0; //!< brick (voxels + gradients) + largest image held
   std::vector<PhaseStats> phases; //!< compositing phases, in order (render not included)
-  //! Over-decomposition: (brick, render seconds) of every brick this node rendered this frame.
-  std::vector<std::pair<int, double>> brickSeconds;
+  //! Over-decomposition: every brick this node rendered this frame.
+  struct BrickRender {
+    int brick = -1;
+    double seconds = 0;
+    std::uint64_t rays = 0, samples = 0;
+  };
+  std::vector<BrickRender> bricks;
 
   double modelledRenderSeconds() const { return renderSeconds / speed; }
   double compositeSeconds() const {
