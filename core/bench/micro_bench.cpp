@@ -117,12 +117,52 @@ CompositeFigure measureOver(int width, int height, int repeats) {
 
 // [3] Binary-swap alone: every node starts with a full-frame synthetic partial image.
 BinarySwapFigure measureBinarySwap(int nodes, int width, int height, int repeats) {
+  return measureCompositing("binary-swap", nodes, width, height, repeats);
+}
+
+const std::vector<CompositingReference>& compositingReferences() {
+  // Issue 8's measurements (P = 8: binary swap, radix-k, direct-send; P = 6: 2-3 swap and IceT's
+  // telescoping), in seconds.
+  static const std::vector<CompositingReference> refs{{"binary-swap", 8, 0.032}, {"radix-k", 8, 0.021},
+                                                      {"direct-send", 8, 0.242}, {"2-3-swap", 6, 0.017},
+                                                      {"telescoping", 6, 0.033}};
+  return refs;
+}
+
+std::string formatCompositingTable(const std::vector<BinarySwapFigure>& figures) {
+  std::string out =
+      "Compositing strategies alone, full-frame synthetic partial images, wall time of all nodes on this\n"
+      "machine's cores (as miniGraphics' ranks shared them), median; target: half of miniGraphics:\n"
+      "  strategy       P   image       kdswap wall   max node   miniGraphics   target   result\n";
+  char buf[256];
+  for (const BinarySwapFigure& f : figures) {
+    double reference = 0;
+    for (const CompositingReference& r : compositingReferences())
+      if (r.strategy == f.strategy && r.nodes == f.nodes) reference = r.miniGraphicsSeconds;
+    std::snprintf(buf, sizeof buf, "  %-12s %3d   %4dx%-4d  %9.2f ms %8.2f ms", f.strategy.c_str(), f.nodes, f.width,
+                  f.height, f.wallSeconds * 1e3, f.compositeMaxSeconds * 1e3);
+    out += buf;
+    if (reference > 0) {
+      std::snprintf(buf, sizeof buf, "   %9.1f ms %6.1f ms   %s\n", reference * 1e3, reference * 0.5e3,
+                    f.wallSeconds <= reference * 0.5 ? "MET" : "MISSED");
+      out += buf;
+    } else {
+      out += "   (no reference)\n";
+    }
+  }
+  return out;
+}
+
+BinarySwapFigure measureCompositing(const std::string& name, int nodes, int width, int height, int repeats) {
   BinarySwapFigure f;
+  f.strategy = name;
   f.nodes = nodes;
   f.width = width;
   f.height = height;
   const Rect frame{0, 0, width, height};
-  const auto strategy = createStrategy("binary-swap");
+  // Ranks in order are front to back: valid for every strategy's tree, whose subtrees hold
+  // consecutive ranks.
+  const auto strategy = createStrategy(name);
   InprocNetwork network(nodes);
   VisibilityOrder order;
   for (int r = 0; r < nodes; ++r) order.frontToBack.push_back(r), order.position.push_back(r);
@@ -155,7 +195,7 @@ BinarySwapFigure measureBinarySwap(int nodes, int width, int height, int repeats
       group.wait();
     });
     const double wall = nowSeconds() - t0;
-    if (network.aborted()) throw Error("binary-swap harness: " + network.abortReason());
+    if (network.aborted()) throw Error(name + " harness: " + network.abortReason());
     if (i == 0) continue;
     double m = 0;
     for (double c : compute) m = std::max(m, c);

@@ -24,6 +24,7 @@ struct CompositeFigure {
 };
 
 struct BinarySwapFigure {
+  std::string strategy = "binary-swap";
   int nodes = 0, width = 0, height = 0;
   double compositeMaxSeconds = 0;  //!< max over nodes of compose time minus time suspended, median
   double wallSeconds = 0;          //!< whole exchange on this machine's cores, median
@@ -39,6 +40,19 @@ struct MicroOptions {
 std::vector<RayCastFigure> measureRayCasting(const MicroOptions& options);
 CompositeFigure measureOver(int width, int height, int repeats);
 BinarySwapFigure measureBinarySwap(int nodes, int width, int height, int repeats);
+//! Any registered strategy alone, on the same synthetic full-frame partial images.
+BinarySwapFigure measureCompositing(const std::string& strategy, int nodes, int width, int height, int repeats);
+
+//! Issue 8's scale: Sandia's miniGraphics miniapp on this machine (MPI ranks sharing the 2 cores,
+//! 1024x1024, float colour, run-length encoding), and kdswap's target of half its time.
+struct CompositingReference {
+  std::string strategy;
+  int nodes;
+  double miniGraphicsSeconds;
+};
+const std::vector<CompositingReference>& compositingReferences();
+//! The strategies table: wall time of each against half of miniGraphics', MET or MISSED.
+std::string formatCompositingTable(const std::vector<BinarySwapFigure>& figures);
 
 //! The printed report of all three, with the honest caveats.
 std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeFigure& over,

@@ -37,8 +37,11 @@ class NodePhaseObserver : public PhaseObserver {
     current_.pixels = pixels;
     current_.region = region;
     largestImage_ = std::max<std::uint64_t>(largestImage_, image.bytes());
+    // A strategy may keep pixels outside its region (binary swap composites in place and crops
+    // once at the end); the stage record shows only what the node owns.
     if (cells_)
-      cells_->push_back(PhaseCell{current_.label, current_.partner, region, image,
+      cells_->push_back(PhaseCell{current_.label, current_.partner, region,
+                                  region.contains(image.rect()) ? image : image.crop(region),
                                   current_.bytesSent + current_.bytesReceived});
     report_.phases.push_back(current_);
   }

@@ -77,15 +77,16 @@ Tile BinarySwap::compose(Image image, const Rect& frame, const VisibilityOrder& 
     const Rect keep = keepFirst ? first : second;
     const Rect give = keepFirst ? second : first;
     comm.send(partner, kSwapTag + round, imageToMessage(prepare(image.crop(give))));
-    Image mine = image.crop(keep);
-    image = Image{};  // the full region is no longer ours
+    // The kept half is not copied out: the partner's half lands on it in place, and pixels
+    // outside `region` are stale from here on (cropped away once, at the end).
     Message in = comm.receive(partner, kSwapTag + round);
     std::int64_t pixels = 0;
-    image = mergeImages(std::move(mine), imageFromMessage(in), order.inFront(partner, me), pixels);
+    image = mergeImages(std::move(image), imageFromMessage(in), order.inFront(partner, me), pixels);
     region = keep;
     phases.endPhase(region, image, pixels);
   }
-  return Tile{region, std::move(image)};
+  if (image.rect() == region || image.empty()) return Tile{region, std::move(image)};
+  return Tile{region, image.crop(region)};
 }
 
 }  // namespace kdswap
