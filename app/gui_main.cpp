@@ -23,20 +23,30 @@ int main(int argc, char** argv) {
   app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels")->capture_default_str();
   app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();
   app.add_option("--screenshot", o.screenshot,
-                 "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed, "
-                 "then exit");
-  app.add_option("--frames", o.frames, "UI frames to draw before the screenshot")->capture_default_str();
+                 "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed "
+                 "(default 30), or when --script ends; then exit");
+  app.add_option("--frames", o.frames, "Exit after N UI frames once the first full frame is shown");
   app.add_option("--layout", o.layout, "With --screenshot: also write where the viewport and stage cells were drawn (JSON)");
+  app.add_option("--script", o.script,
+                 "Play synthetic mouse and keyboard input from FILE (commands: see ui/input_script.h), then exit");
+  app.add_option("--dump-state", o.dumpState,
+                 "At exit write the view, transfer function, layout, frames shown and the script's checkpoints as JSON "
+                 "(checkpoint pictures go beside it)");
+  app.add_option("--report-fps", o.reportFps,
+                 "At exit write the UI frame timing as JSON (fps, median and p95 frame time and its parts, idle and "
+                 "while rendering) and print a summary");
   app.footer(
       "Mouse: drag to orbit, right-drag to pan, wheel to zoom, R to reset the view.\n"
       "Example: kdswap-gui --dataset phantom:128 --nodes 8\n"
-      "Headless: xvfb-run -a -s \"-screen 0 1600x1000x24\" kdswap-gui --screenshot shot.png --frames 30");
+      "Headless: xvfb-run -a -s \"-screen 0 1600x1000x24\" kdswap-gui --screenshot shot.png --frames 30\n"
+      "Measure: kdswap-gui --frames 300 --report-fps fps.json");
   try {
     app.parse(argc, argv);
     if (std::sscanf(windowSize.c_str(), "%dx%d", &o.windowWidth, &o.windowHeight) != 2 || o.windowWidth < 320 ||
         o.windowHeight < 240 || o.windowWidth > 16384 || o.windowHeight > 16384)
       throw kdswap::Error("--size \"" + windowSize + "\": expected WxH, at least 320x240");
-    if (o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
+    if (app.count("--frames") && o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
+    if (!o.screenshot.empty() && o.frames == 0 && o.script.empty()) o.frames = 30;
     if (!o.layout.empty() && o.screenshot.empty()) throw kdswap::Error("--layout needs --screenshot");
     return kdswap::runGui(o);
   } catch (const CLI::CallForHelp& e) {

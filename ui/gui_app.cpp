@@ -1,14 +1,16 @@
 // The desktop app: window and ImGui set-up, the per-frame loop (poll worker, draw panels, submit
-// the newest request), first-run layout and the screenshot used by the GUI test.
+// the newest request, redraw what changed), first-run layout, and what tests and measurements use:
+// the screenshot, scripted input, state dumps and the frame-time report.
 #include "ui/gui_app.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <thread>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <thread>
 
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
@@ -22,14 +24,21 @@
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
+#include "ui/damage_renderer.h"
+#include "ui/frame_clock.h"
+#include "ui/input_script.h"
 #include "ui/panels.h"
+#include "ui/state_dump.h"
 
 namespace kdswap {
 namespace {
 
 constexpr double kRefineAfterSeconds = 0.25;  // still mouse this long: render at full quality
-constexpr double kScreenshotTimeoutSeconds = 300;
+constexpr double kFirstFrameTimeoutSeconds = 300;
+constexpr double kFrameSeconds = 1.0 / 60.0;  // UI frames are paced to 60 Hz
+const ImVec4 kClearColour(0.06f, 0.06f, 0.07f, 1.0f);
 std::string glfwLastError;
+bool windowExposed = false;  // set by GLFW's refresh callback: the window needs a full redraw
 
 // Built-in data sets at three sizes, then volume files in assets/ and the shared data folder.
 std::vector<std::string> findDataChoices() {
@@ -101,7 +110,7 @@ void drawPanels(GuiState& state, float w, float h) {
 }
 
 // Takes what the worker finished: new scene (maybe its preset), frames (uploaded), errors.
-void pollWorker(GuiState& state, RenderWorker& worker) {
+void pollWorker(GuiState& state, RenderWorker& worker, DamageRenderer& renderer) {
   if (auto scene = worker.takeScene()) {
     const bool newData = !state.sceneShown || state.sceneShown->spec.data != scene->spec.data;
     if (newData && !state.tfEdited && !scene->info.preset.empty() && scene->info.preset != state.request.transfer.name()) {
@@ -119,10 +128,17 @@ void pollWorker(GuiState& state, RenderWorker& worker) {
     state.frame = frame;
     state.sceneShown = frame->scene;
     state.frameTexture.upload(frame->image);
+    renderer.textureChanged(state.frameTexture.imguiId());
     if (!frame->preview) {
       state.fullFrame = frame;
+      state.fullTexture.upload(frame->image);
       state.stagesTexture.upload(frame->stages.pixels);
+      renderer.textureChanged(state.fullTexture.imguiId());
+      renderer.textureChanged(state.stagesTexture.imguiId());
     }
+    if (state.logShown)
+      state.shownLog.push_back({state.uiFrame, frame->id, frame->preview, frame->request.width, frame->request.height,
+                                frame->request.view, ImGui::IsAnyMouseDown()});
   }
   std::vector<std::string> errors = worker.takeErrors();
   if (!errors.empty()) {
@@ -143,18 +159,27 @@ FrameRequest previewOf(const FrameRequest& full) {
   return r;
 }
 
-// The window's pixels (default framebuffer, bottom row first in GL) as a top-down PNG.
-void writeScreenshot(const std::string& path, int width, int height) {
-  std::vector<std::uint8_t> rgba(std::size_t(width) * height * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  Image image(Rect{0, 0, width, height});
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::uint8_t* p = &rgba[(std::size_t(height - 1 - y) * width + x) * 4];
-      image.at(x, y) = Rgba{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, 1.0f};
-    }
-  writeImage(path, image);
+// Sends what the panels asked for: a preview while something moves, the full frame once nothing
+// has moved for kRefineAfterSeconds (the button may still be held), or at once for a settled change.
+void submitRequests(GuiState& state, RenderWorker& worker, double now, double& lastMove) {
+  if (state.wantPreview) {
+    state.lastSubmitted = worker.submit(state.scene, previewOf(state.request), true);
+    lastMove = now, state.refinePending = true;
+  } else if (state.wantFull || (state.refinePending && now - lastMove > kRefineAfterSeconds)) {
+    state.lastSubmitted = worker.submit(state.scene, state.request, false);
+    state.refinePending = false;
+  }
+  state.wantPreview = state.wantFull = false;
+  state.rendering = worker.busy();
+}
+
+// Waits for input until this frame's deadline, so input is handled at most one frame late and
+// the loop does not spin. A frame that overran starts the next one at once.
+void waitForFrame(double& deadline) {
+  const double now = glfwGetTime();
+  deadline = std::max(deadline + kFrameSeconds, now);
+  for (double left = deadline - now; left > 1e-4; left = deadline - glfwGetTime()) glfwWaitEventsTimeout(left);
+  glfwPollEvents();
 }
 
 void writeLayout(const std::string& path, const GuiState& state, int width, int height) {
@@ -168,6 +193,28 @@ void writeLayout(const std::string& path, const GuiState& state, int width, int 
   std::ofstream out(path);
   out << j.dump(2) << "\n";
   if (!out) throw Error(path + ": cannot write the layout file");
+}
+
+void writeJson(const std::string& path, const nlohmann::json& j, const char* what) {
+  std::ofstream out(path);
+  out << j.dump(2) << "\n";
+  if (!out) throw Error(path + ": cannot write the " + std::string(what));
+}
+
+// A script checkpoint: the state now, plus the window and the shown frame as PNGs beside the
+// --dump-state file (`<stem>-<name>-window.png`, `<stem>-<name>-frame.png`).
+nlohmann::json checkpoint(const std::string& name, const GuiState& state, const Pixels& window, const std::string& dumpPath) {
+  nlohmann::json j = describeState(state);
+  if (dumpPath.empty()) return j;
+  const std::filesystem::path dump(dumpPath);
+  const std::string stem = (dump.parent_path() / dump.stem()).string() + "-" + name;
+  writePixels(stem + "-window.png", window);
+  j["window_png"] = stem + "-window.png";
+  if (state.frame) {
+    writePixels(stem + "-frame.png", state.frame->image);
+    j["frame_png"] = stem + "-frame.png";
+  }
+  return j;
 }
 
 void setUpImGui(GLFWwindow* window) {
@@ -185,6 +232,123 @@ void setUpImGui(GLFWwindow* window) {
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 }
+
+// The per-frame loop and what ends it: the window closing, --frames, the end of --script.
+class GuiLoop {
+ public:
+  GuiLoop(const GuiOptions& options, GuiState& state, GLFWwindow* window, DamageRenderer& renderer)
+      : options_(options), state_(state), window_(window), renderer_(renderer) {
+    if (!options.script.empty()) script_ = InputScript::load(options.script);
+    state.logShown = script_.has_value() || !options.dumpState.empty();
+  }
+
+  int run() {
+    RenderWorker worker;
+    SweepWorker sweep;
+    state_.sweep = &sweep;
+    state_.lastSubmitted = worker.submit(state_.scene, state_.request, false);
+    start_ = glfwGetTime();
+    double deadline = start_, lastMove = 0;
+    int exitCode = -1;
+    while (exitCode < 0 && !glfwWindowShouldClose(window_)) {
+      clock_.begin(glfwGetTime());
+      waitForFrame(deadline);
+      clock_.mark(FrameClock::Wait, glfwGetTime());
+      pollWorker(state_, worker, renderer_);
+      clock_.setRendering(state_.rendering || state_.building);
+      clock_.mark(FrameClock::Take, glfwGetTime());
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      if (script_) script_->apply(ImGui::GetIO());
+      ImGui::NewFrame();
+      drawPanels(state_, ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
+      submitRequests(state_, worker, glfwGetTime(), lastMove);
+      ImGui::Render();
+      clock_.mark(FrameClock::Build, glfwGetTime());
+      int width, height;
+      glfwGetFramebufferSize(window_, &width, &height);
+      const bool capture = !pendingCheckpoint_.empty() || exitCode_ >= 0;
+      if (capture) clock_.exclude();
+      if (std::exchange(windowExposed, false) || (capture && !renderer_.partial())) renderer_.invalidate();
+      const bool changed = renderer_.render(ImGui::GetDrawData(), width, height, kClearColour);
+      clock_.setPresented(changed, renderer_.lastDamagedFraction());
+      if (capture) captured_ = {width, height, renderer_.readPixels(width, height)};
+      clock_.mark(FrameClock::Draw, glfwGetTime());
+      renderer_.present();
+      clock_.mark(FrameClock::Swap, glfwGetTime());
+      ++state_.uiFrame;
+      exitCode = afterFrame(width, height);
+    }
+    state_.sweep = nullptr;
+    finish();
+    return std::max(exitCode, 0);
+  }  // the workers join here, before the GL context goes away
+
+ private:
+  // Records what this frame captured (a checkpoint asked for by the last frame, the final
+  // screenshot), then advances the script or the frame count. Returns an exit code to stop, or -1.
+  int afterFrame(int width, int height) {
+    if (!pendingCheckpoint_.empty())
+      checkpoints_[pendingCheckpoint_] = checkpoint(pendingCheckpoint_, state_, captured_, options_.dumpState);
+    pendingCheckpoint_.clear();
+    if (exitCode_ >= 0) {
+      if (!options_.screenshot.empty()) {
+        writePixels(options_.screenshot, captured_);
+        if (!options_.layout.empty()) writeLayout(options_.layout, state_, width, height);
+        std::printf("wrote %s (%dx%d)\n", options_.screenshot.c_str(), width, height);
+      }
+      return exitCode_;
+    }
+    const double now = glfwGetTime();
+    if (firstShown_ < 0 && state_.fullFrame && !state_.rendering) {
+      firstShown_ = state_.uiFrame;
+      std::printf("first frame shown after %.1f s (%ld UI frames)\n", now - start_, state_.uiFrame);
+    }
+    // Checkpoints and the exit take their pictures on the next frame, drawn completely.
+    if (script_) {
+      const InputScript::Step step = script_->advance(state_, now);
+      pendingCheckpoint_ = step.checkpoint;
+      if (step.verifyRedraw) renderer_.requestVerification();
+      if (step.finished) exitCode_ = 0;
+    } else if (options_.frames > 0) {
+      if (firstShown_ >= 0 && state_.uiFrame - firstShown_ >= options_.frames) exitCode_ = 0;
+      if (!state_.sceneShown && !state_.errors.empty() && !state_.rendering) return 2;  // nothing to show
+      if (firstShown_ < 0 && now - start_ > kFirstFrameTimeoutSeconds) {
+        std::fprintf(stderr, "kdswap-gui: no frame finished within %.0f s\n", kFirstFrameTimeoutSeconds);
+        return 1;
+      }
+    }
+    return -1;
+  }
+
+  void finish() {
+    if (!options_.reportFps.empty() || options_.frames > 0 || script_) std::fputs(clock_.reportText().c_str(), stdout);
+    if (!options_.reportFps.empty()) writeJson(options_.reportFps, nlohmann::json::parse(clock_.reportJson()), "frame-time report");
+    if (!options_.dumpState.empty()) {
+      nlohmann::json j;
+      j["final"] = describeState(state_);
+      j["redraw"] = {{"partial", renderer_.partial()}, {"verified_mismatched_pixels", renderer_.verificationMismatches()}};
+      j["checkpoints"] = checkpoints_;
+      j["shown"] = describeShownFrames(state_);
+      writeJson(options_.dumpState, j, "state dump");
+    }
+    if (options_.frames > 0 || script_)
+      for (const std::string& e : state_.errors) std::fprintf(stderr, "kdswap-gui: %s\n", e.c_str());
+  }
+
+  const GuiOptions& options_;
+  GuiState& state_;
+  GLFWwindow* window_;
+  DamageRenderer& renderer_;
+  std::optional<InputScript> script_;
+  FrameClock clock_;
+  nlohmann::json checkpoints_ = nlohmann::json::object();
+  double start_ = 0;
+  long firstShown_ = -1;           //!< UI frame at which the first full frame was shown
+  std::string pendingCheckpoint_;  //!< recorded after the next frame is drawn
+  int exitCode_ = -1;              //!< >= 0: exit with it after the next frame is drawn
+  Pixels captured_;                //!< the window as drawn by a capturing frame
+};
 
 }  // namespace
 
@@ -210,80 +374,27 @@ int runGui(const GuiOptions& options) {
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow*) { windowExposed = true; });
   setUpImGui(window);
 
   int exitCode = 0;
-  {
-    RenderWorker worker;
-    SweepWorker sweep;
-    state.sweep = &sweep;
-    worker.submit(state.scene, state.request, false);
-    const bool capturing = !options.screenshot.empty();
-    const double start = glfwGetTime();
-    double lastMove = 0;
-    bool refinePending = false;
-    int framesAfterContent = -1;  // counting starts once the first full frame is shown
-    int framesWhileRendering = 0;
-    while (!glfwWindowShouldClose(window)) {
-      if (capturing) glfwPollEvents();
-      else glfwWaitEventsTimeout(1.0 / 60.0);  // redraws at <= 60 Hz while frames are in flight
-      pollWorker(state, worker);
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui_ImplGlfw_NewFrame();
-      ImGui::NewFrame();
-      int width, height;
-      glfwGetFramebufferSize(window, &width, &height);
-      drawPanels(state, ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
-      const double now = glfwGetTime();
-      if (state.wantPreview) {
-        worker.submit(state.scene, previewOf(state.request), true);
-        lastMove = now, refinePending = true;
-      } else if (state.wantFull || (refinePending && now - lastMove > kRefineAfterSeconds && !ImGui::IsAnyMouseDown())) {
-        worker.submit(state.scene, state.request, false);
-        refinePending = false;
-      }
-      state.wantPreview = state.wantFull = false;
-      ImGui::Render();
-      glViewport(0, 0, width, height);
-      glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT);
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-      if (capturing) {
-        if (framesAfterContent < 0 && state.fullFrame && !state.rendering) {
-          framesAfterContent = 0;
-          std::printf("UI drew %d frames in %.1f s while the first frame rendered (%.0f fps)\n", framesWhileRendering,
-                      now - start, framesWhileRendering / std::max(now - start, 1e-9));
-        }
-        if (framesAfterContent < 0) ++framesWhileRendering;
-        if (framesAfterContent >= 0 && ++framesAfterContent >= options.frames) {
-          writeScreenshot(options.screenshot, width, height);
-          if (!options.layout.empty()) writeLayout(options.layout, state, width, height);
-          std::printf("wrote %s (%dx%d)\n", options.screenshot.c_str(), width, height);
-          break;
-        }
-        if (!state.sceneShown && !state.errors.empty() && !state.rendering) {
-          exitCode = 2;  // the scene never loaded: nothing to show (errors printed below)
-          break;
-        }
-        if (now - start > kScreenshotTimeoutSeconds) {
-          std::fprintf(stderr, "kdswap-gui: no frame finished within %.0f s; screenshot not written\n", kScreenshotTimeoutSeconds);
-          exitCode = 1;
-          break;
-        }
-      }
-      glfwSwapBuffers(window);
-    }
-    if (!state.errors.empty() && capturing)
-      for (const std::string& e : state.errors) std::fprintf(stderr, "kdswap-gui: %s\n", e.c_str());
-    state.sweep = nullptr;
-  }  // the workers join here, before the GL context goes away
+  std::string error;
+  try {
+    DamageRenderer renderer(window);
+    GuiLoop loop(options, state, window, renderer);
+    exitCode = loop.run();
+  } catch (const Error& e) {
+    error = e.what();  // rethrown below, once the window is closed
+  }
   state.frameTexture.reset();
+  state.fullTexture.reset();
   state.stagesTexture.reset();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   glfwDestroyWindow(window);
   glfwTerminate();
+  if (!error.empty()) throw Error(error);
   return exitCode;
 }
 

@@ -14,9 +14,12 @@ struct GuiOptions {
   std::string tf;                       //!< preset name or JSON path; empty: the data set's preset
   int imageSize = 512;                  //!< rendered frame is imageSize x imageSize
   int windowWidth = 1600, windowHeight = 1000;
-  std::string screenshot;               //!< write the window to this PNG after `frames` frames, then exit
-  int frames = 30;                      //!< UI frames after the first full frame arrived
+  std::string screenshot;               //!< write the window to this PNG before exiting
+  int frames = 0;                       //!< > 0: exit after this many UI frames once the first full frame is shown
   std::string layout;                   //!< with --screenshot: JSON of where panels drew (for tests)
+  std::string script;                   //!< synthetic input (ui/input_script.h); exit when it ends
+  std::string dumpState;                //!< at exit: JSON of the state, script checkpoints, frames shown
+  std::string reportFps;                //!< at exit: JSON of the UI frame timing (see FrameClock)
 };
 
 //! Runs the app until the window closes (or the screenshot is written). Returns the exit code.

@@ -4,6 +4,7 @@
 // submissions. Only the UI thread touches this.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +27,23 @@ struct DrawnLayout {
     ImVec4 rect;
   };
   std::vector<Cell> cells;
+  std::vector<ImVec2> tfPoints;  //!< opacity control points of the transfer-function editor
+  struct Shown {
+    int node = -1, phase = -1;
+    ImVec4 rect{0, 0, 0, 0};
+  };
+  Shown tooltip;   //!< the stage cell whose tooltip was drawn (rect: the tooltip window)
+  Shown enlarged;  //!< the stage cell shown enlarged (rect: the enlarged picture)
+};
+
+//! A frame the viewport started showing (for --dump-state and the interaction test).
+struct ShownFrame {
+  long uiFrame = 0;
+  std::uint64_t id = 0;
+  bool preview = false;
+  int width = 0, height = 0;
+  View view;
+  bool mouseDown = false;  //!< a mouse button was held when it arrived
 };
 
 struct StagesUi {
@@ -63,7 +81,13 @@ struct GuiState {
   std::shared_ptr<const SceneSnapshot> sceneShown;  //!< the scene the newest frame came from
   std::shared_ptr<const FrameSnapshot> frame;       //!< newest frame (maybe a preview)
   std::shared_ptr<const FrameSnapshot> fullFrame;   //!< newest full frame (stages, timing)
-  GlTexture frameTexture, stagesTexture;
+  GlTexture frameTexture;                           //!< `frame`, shown in the viewport
+  GlTexture fullTexture, stagesTexture;             //!< `fullFrame`'s image and stage atlas
+  std::uint64_t lastSubmitted = 0;                  //!< id of the newest request sent to the worker
+  bool refinePending = false;                       //!< a preview is shown; full quality follows when the mouse rests
+  long uiFrame = 0;                                 //!< UI frames drawn so far
+  bool logShown = false;                            //!< keep shownLog (scripts and --dump-state)
+  std::vector<ShownFrame> shownLog;                 //!< every frame taken from the worker, oldest first
   std::vector<std::string> errors;                  //!< shown until dismissed
   bool rendering = false, building = false;
 

@@ -98,6 +98,12 @@ class RenderWorker {
   std::thread worker_;
 };
 
+//! Lowers the calling thread's scheduling priority (Linux nice +kBackgroundNice), so that when the
+//! UI thread and the rasteriser want a core the background renderer yields it. Threads it starts
+//! inherit the priority.
+void lowerThreadPriority();
+inline constexpr int kBackgroundNice = 10;
+
 //! Opens `data` as a built-in data set ("name[:size]") when the name is one, else as a file.
 std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data);
 

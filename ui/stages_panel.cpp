@@ -19,9 +19,11 @@ std::string phaseName(const PhaseRecord& record, int phase) {
   return phase == 0 ? label : std::to_string(phase) + " " + label;
 }
 
-void cellTooltip(const PhaseRecord& record, int node, int phase) {
+void cellTooltip(GuiState& state, const PhaseRecord& record, int node, int phase) {
   const PhaseCell& cell = record.cells[std::size_t(node)][std::size_t(phase)];
   ImGui::BeginTooltip();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  state.layout.tooltip = {node, phase, ImVec4(at.x, at.y, size.x, size.y)};
   ImGui::Text("node %d, phase %d (%s)", node, phase, cell.label.c_str());
   if (cell.partner >= 0) ImGui::Text("partner: node %d", cell.partner);
   else ImGui::TextDisabled("no partner");
@@ -68,6 +70,7 @@ void drawSelection(GuiState& state, const PhaseRecord& record, const StageAtlas&
   const ImVec2 uv1(uv0.x + float(atlas.cellWidth) / aw.x, uv0.y + float(atlas.cellHeight) / aw.y);
   const ImVec2 at = ImGui::GetCursorScreenPos();
   ImGui::Image(state.stagesTexture.imguiId(), ImVec2(w, h), uv0, uv1);
+  state.layout.enlarged = {ui.selectedNode, ui.selectedPhase, ImVec4(at.x, at.y, w, h)};
   const PhaseCell& cell = record.cells[std::size_t(ui.selectedNode)][std::size_t(ui.selectedPhase)];
   if (!cell.region.empty()) {
     const float s = w / float(record.frame.w);
@@ -93,11 +96,11 @@ void drawFinalTiles(GuiState& state, const PhaseRecord& record) {
   ImGui::TextDisabled("Final image: the tile each node finished. Hover a cell for details; click to enlarge.");
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float side = std::min(avail.x, avail.y - 4.0f);
-  if (side < 48 || !state.frameTexture.valid()) return;
+  if (side < 48 || !state.fullTexture.valid()) return;
   const float w = side, h = side * float(record.frame.h) / float(record.frame.w);
   const ImVec2 at(ImGui::GetCursorScreenPos().x + 0.5f * (avail.x - w), ImGui::GetCursorScreenPos().y);
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  draw->AddImage(state.frameTexture.imguiId(), at, ImVec2(at.x + w, at.y + h));
+  draw->AddImage(state.fullTexture.imguiId(), at, ImVec2(at.x + w, at.y + h));
   const float s = w / float(record.frame.w);
   for (std::size_t node = 0; node < record.cells.size(); ++node) {
     const Rect& r = record.cells[node].back().region;
@@ -121,6 +124,7 @@ void drawFinalTiles(GuiState& state, const PhaseRecord& record) {
 
 void drawStagesPanel(GuiState& state) {
   state.layout.cells.clear();
+  state.layout.tooltip = state.layout.enlarged = {};
   state.layout.columns = state.layout.rows = 0;
   if (!ImGui::Begin("Compositing stages")) {
     ImGui::End();
@@ -184,7 +188,7 @@ void drawStagesPanel(GuiState& state) {
       if (phase == ui.phase && ui.playing) draw->AddRect(p0, p1, IM_COL32(255, 255, 255, 120));
       if (ImGui::IsItemHovered()) {
         draw->AddRect(p0, p1, IM_COL32(255, 255, 255, 255), 0.0f, 0, 2.0f);
-        cellTooltip(record, node, phase);
+        cellTooltip(state, record, node, phase);
       }
       if (ImGui::IsItemClicked()) ui.selectedNode = node, ui.selectedPhase = phase;
       if (node == ui.selectedNode && phase == ui.selectedPhase) draw->AddRect(p0, p1, IM_COL32(90, 200, 255, 255), 0, 0, 2);

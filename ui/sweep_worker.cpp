@@ -1,6 +1,8 @@
 // Background node-count sweep: one cluster per P, one measured frame each.
 #include "ui/sweep_worker.h"
 
+#include "ui/render_worker.h"
+
 namespace kdswap {
 
 SweepWorker::~SweepWorker() { cancel(); }
@@ -43,6 +45,7 @@ void SweepWorker::run(std::shared_ptr<const VolumeSource> source, ClusterOptions
   // One worker thread: the nodes' times are then each one processor's work, which is what the
   // modelled time assumes, and the interactive renderer keeps the other cores.
   base.threads = 1;
+  lowerThreadPriority();
   request.recordPhases = false;
   std::vector<int> counts;
   {

@@ -121,8 +121,10 @@ void drawCurve(GuiState& state) {
     changed(state, false);
   }
   if (ImGui::IsItemDeactivated() && ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state.requestFrame(false);
+  state.layout.tfPoints.clear();
   for (std::size_t i = 0; i < tf.opacity().size(); ++i) {
     const ImVec2 s = toScreen(tf.opacity()[i]);
+    state.layout.tfPoints.push_back(s);
     const bool hot = int(i) == near || int(i) == dragged;
     draw->AddCircleFilled(s, hot ? kPointRadius + 1.5f : kPointRadius, hot ? IM_COL32(255, 210, 60, 255) : IM_COL32(240, 240, 240, 255));
   }

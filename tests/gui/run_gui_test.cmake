@@ -1,17 +1,20 @@
-# Runs kdswap-gui under Xvfb for a screenshot and its layout, then checks them.
+# Runs kdswap-gui under Xvfb for a screenshot, its layout and the UI frame timing, then checks them.
 # Called by CTest with -DXVFB_RUN= -DGUI= -DCHECK= -DOUT= (see ui/CMakeLists.txt).
+include(${CMAKE_CURRENT_LIST_DIR}/fps_report.cmake)
 file(MAKE_DIRECTORY ${OUT})
 set(shot ${OUT}/shot.png)
 set(layout ${OUT}/layout.json)
-file(REMOVE ${shot} ${layout})
+set(fps ${OUT}/fps.json)
+file(REMOVE ${shot} ${layout} ${fps})
 set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --dataset phantom:64 --nodes 8
-            --screenshot ${shot} --layout ${layout} --frames 30)
+            --screenshot ${shot} --layout ${layout} --frames 30 --report-fps ${fps})
 execute_process(COMMAND ${command} RESULT_VARIABLE result)
+string(REPLACE ";" " " shown "${command}")
 if(NOT result EQUAL 0)
-  string(REPLACE ";" " " shown "${command}")
   message(FATAL_ERROR "kdswap-gui exited with ${result}; reproduce with:\n  ${shown}")
 endif()
 execute_process(COMMAND ${CHECK} ${shot} ${layout} 8 4 RESULT_VARIABLE result)
 if(NOT result EQUAL 0)
   message(FATAL_ERROR "screenshot check failed; look at ${shot} (layout in ${layout})")
 endif()
+kdswap_check_fps_report(${fps} "screenshot run")
