@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
   app.add_option("--report-fps", o.reportFps,
                  "At exit write the UI frame timing as JSON (fps, median and p95 frame time and its parts, idle and "
                  "while rendering) and print a summary");
+  app.add_flag("--full-redraw", o.fullRedraw,
+               "Draw the whole window every UI frame, changed or not (by default only what changed is drawn)");
   app.footer(
       "Mouse: drag to orbit, right-drag to pan, wheel to zoom, R to reset the view.\n"
       "Example: kdswap-gui --dataset phantom:128 --nodes 8\n"

@@ -81,8 +81,8 @@ bool sameOrder(const std::vector<std::string>& before, const std::vector<std::st
 
 }  // namespace
 
-DamageRenderer::DamageRenderer(GLFWwindow* window) : window_(window) {
-  if (glfwGetX11Display() && glfwGetGLXWindow(window) && glfwExtensionSupported("GLX_MESA_copy_sub_buffer"))
+DamageRenderer::DamageRenderer(GLFWwindow* window, bool everyFrame) : window_(window), everyFrame_(everyFrame) {
+  if (!everyFrame && glfwGetX11Display() && glfwGetGLXWindow(window) && glfwExtensionSupported("GLX_MESA_copy_sub_buffer"))
     copySubBuffer_ = reinterpret_cast<CopySubBuffer>(glfwGetProcAddress("glXCopySubBufferMESA"));
 }
 
@@ -136,8 +136,8 @@ bool DamageRenderer::render(ImDrawData* data, int width, int height, const ImVec
   ImVec4 region = damage(*data);
   std::vector<std::uint8_t> kept;
   if (verifyPending_ && !whole && emptyRect(region)) kept = readPixels(width, height);
-  if (emptyRect(region) && kept.empty()) return false;
-  if (whole || !kept.empty()) region = ImVec4(data->DisplayPos.x, data->DisplayPos.y, data->DisplayPos.x + data->DisplaySize.x,
+  if (emptyRect(region) && kept.empty() && !everyFrame_) return false;
+  if (whole || !kept.empty() || everyFrame_) region = ImVec4(data->DisplayPos.x, data->DisplayPos.y, data->DisplayPos.x + data->DisplaySize.x,
                              data->DisplayPos.y + data->DisplaySize.y);
   // Whole pixels, rounded outwards, so the clear and the clipped draws cover the same pixels.
   region = ImVec4(std::floor(region.x), std::floor(region.y), std::ceil(region.z), std::ceil(region.w));

@@ -20,8 +20,9 @@ namespace kdswap {
 
 class DamageRenderer {
  public:
-  //! Needs the window's GL context current.
-  explicit DamageRenderer(GLFWwindow* window);
+  //! Needs the window's GL context current. `everyFrame`: draw and swap the whole window every
+  //! frame, changed or not (for comparison, and in case a driver misbehaves).
+  DamageRenderer(GLFWwindow* window, bool everyFrame);
 
   //! True when only changed rectangles are drawn and copied (GLX_MESA_copy_sub_buffer).
   bool partial() const { return copySubBuffer_ != nullptr; }
@@ -58,6 +59,7 @@ class DamageRenderer {
   ImVec4 damage(const ImDrawData& data);
 
   GLFWwindow* window_;
+  bool everyFrame_;
   using CopySubBuffer = void (*)(void* display, unsigned long drawable, int x, int y, int width, int height);
   CopySubBuffer copySubBuffer_ = nullptr;  //!< glXCopySubBufferMESA, when the context has it
   int width_ = 0, height_ = 0;

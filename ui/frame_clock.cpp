@@ -40,7 +40,7 @@ void FrameClock::begin(double now) {
 void FrameClock::mark(Part part, double now) {
   const double cpu = threadCpuSeconds();
   current_.part[std::size_t(part)] += now - lastMark_;
-  if (part != Wait) current_.workCpu += cpu - lastCpu_;
+  (part == Wait ? current_.waitCpu : current_.workCpu) += cpu - lastCpu_;
   lastMark_ = now;
   lastCpu_ = cpu;
 }
@@ -50,7 +50,7 @@ std::string FrameClock::reportJson() const {
   for (const bool rendering : {false, true}) {
     std::size_t frames = 0, presented = 0;
     double seconds = 0;
-    std::vector<double> interval, work, cpu, fraction;
+    std::vector<double> interval, work, cpu, waitCpu, fraction;
     std::array<std::vector<double>, kParts> part;
     for (const Sample& s : samples_) {
       if (s.rendering != rendering || s.excluded) continue;
@@ -59,6 +59,7 @@ std::string FrameClock::reportJson() const {
       interval.push_back(s.interval);
       work.push_back(s.part[Take] + s.part[Build] + s.part[Draw] + s.part[Swap]);
       cpu.push_back(s.workCpu);
+      waitCpu.push_back(s.waitCpu);
       for (int p = 0; p < kParts; ++p) part[std::size_t(p)].push_back(s.part[std::size_t(p)]);
       if (s.presented) ++presented, fraction.push_back(s.fraction);
     }
@@ -73,6 +74,7 @@ std::string FrameClock::reportJson() const {
                         {"work_ms_p95", quantile(work, 0.95) * 1e3},
                         {"work_cpu_ms_median", quantile(cpu, 0.5) * 1e3},
                         {"work_cpu_ms_p95", quantile(cpu, 0.95) * 1e3},
+                        {"wait_cpu_ms_median", quantile(waitCpu, 0.5) * 1e3},
                         {"presented", presented},
                         {"presented_fraction_median", quantile(fraction, 0.5)}};
     for (int p = 0; p < kParts; ++p) {
@@ -94,11 +96,13 @@ std::string FrameClock::reportText() const {
     char line[512];
     std::snprintf(line, sizeof line,
                   "UI %-9s %4zu frames in %.1f s: %.1f fps (median interval %.1f ms, p95 %.1f ms); UI thread work %.1f ms "
-                  "median (%.1f ms CPU; take %.2f, build %.2f, draw %.2f, swap %.2f); %zu presented, median %.0f%% redrawn\n",
+                  "median (%.1f ms CPU; take %.2f, build %.2f, draw %.2f, swap %.2f; waiting %.1f ms CPU); %zu presented, median %.0f%% "
+                  "redrawn\n",
                   kind, k["frames"].get<std::size_t>(), k["seconds"].get<double>(), k["fps_median"].get<double>(),
                   k["interval_ms_median"].get<double>(), k["interval_ms_p95"].get<double>(), k["work_ms_median"].get<double>(),
                   k["work_cpu_ms_median"].get<double>(), p["take"].get<double>(), p["build"].get<double>(),
-                  p["draw"].get<double>(), p["swap"].get<double>(), k["presented"].get<std::size_t>(),
+                  p["draw"].get<double>(), p["swap"].get<double>(), k["wait_cpu_ms_median"].get<double>(),
+                  k["presented"].get<std::size_t>(),
                   k["presented_fraction_median"].get<double>() * 100.0);
     text += line;
   }

@@ -39,6 +39,7 @@ class FrameClock {
     double interval = 0;                //!< wall seconds from this frame's begin to the next one's
     std::array<double, kParts> part{};  //!< wall seconds
     double workCpu = 0;                 //!< UI thread CPU seconds outside Wait
+    double waitCpu = 0;                 //!< UI thread CPU seconds in Wait (event handling)
     bool rendering = false, presented = false, excluded = false;
     double fraction = 0;
   };

@@ -380,7 +380,7 @@ int runGui(const GuiOptions& options) {
   int exitCode = 0;
   std::string error;
   try {
-    DamageRenderer renderer(window);
+    DamageRenderer renderer(window, options.fullRedraw);
     GuiLoop loop(options, state, window, renderer);
     exitCode = loop.run();
   } catch (const Error& e) {

@@ -20,6 +20,7 @@ struct GuiOptions {
   std::string script;                   //!< synthetic input (ui/input_script.h); exit when it ends
   std::string dumpState;                //!< at exit: JSON of the state, script checkpoints, frames shown
   std::string reportFps;                //!< at exit: JSON of the UI frame timing (see FrameClock)
+  bool fullRedraw = false;              //!< draw the whole window every frame (see DamageRenderer)
 };
 
 //! Runs the app until the window closes (or the screenshot is written). Returns the exit code.

@@ -157,7 +157,9 @@ InputScript::Step InputScript::advance(const GuiState& state, double now) {
       done = state.frame && !state.frame->preview && state.frame->id == state.lastSubmitted && !state.rendering &&
              !state.building && !state.refinePending;
     } else {
-      done = std::any_of(state.shownLog.begin() + std::ptrdiff_t(shownAtStart_), state.shownLog.end(),
+      // A preview on screen, or one that arrived since: previews may finish before the wait begins.
+      done = (state.frame && state.frame->preview) ||
+             std::any_of(state.shownLog.begin() + std::ptrdiff_t(shownAtStart_), state.shownLog.end(),
                          [](const ShownFrame& f) { return f.preview; });
     }
     if (!done && now - startedAt_ > kWaitTimeoutSeconds) fail(c, "timed out");

@@ -8,8 +8,9 @@
 //   wheel STEPS              one wheel event (positive: away from the user, zooms in)
 //   key K                    press and release a letter key (R resets the view)
 //   frames N                 let N UI frames pass
-//   wait full|preview        until a full-quality frame is shown and nothing is rendering or
-//                            pending; or until a new preview frame is shown (timeout: 300 s)
+//   wait full|preview        until the full-quality frame of the latest request is shown and
+//                            nothing is rendering or pending; or until a preview is on screen
+//                            (timeout: 300 s)
 //   checkpoint NAME          record the state (view, transfer function, frames shown, layout)
 //                            and pictures under NAME (see gui_app.h, --dump-state)
 //   verify-redraw            on the next frame that changes nothing, redraw the whole window and

@@ -31,9 +31,20 @@ bool SceneSpec::sameScene(const SceneSpec& o) const {
 void lowerThreadPriority() {
 #if defined(__linux__)
   // On Linux the nice value is per thread; failing to lower it only costs responsiveness.
-  const int tid = int(syscall(SYS_gettid));
-  setpriority(PRIO_PROCESS, id_t(tid), std::min(19, getpriority(PRIO_PROCESS, id_t(tid)) + kBackgroundNice));
+  const id_t tid = id_t(syscall(SYS_gettid));
+  if (getpriority(PRIO_PROCESS, tid) < kBackgroundNice) setpriority(PRIO_PROCESS, tid, kBackgroundNice);
 #endif
+}
+
+BackgroundThreads::BackgroundThreads() {
+  lowerThreadPriority();
+  observe(true);
+}
+
+BackgroundThreads::~BackgroundThreads() { observe(false); }
+
+void BackgroundThreads::on_scheduler_entry(bool isWorker) {
+  if (isWorker) lowerThreadPriority();
 }
 
 std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data) {
@@ -92,7 +103,7 @@ bool RenderWorker::building() const {
 }
 
 void RenderWorker::run() {
-  lowerThreadPriority();
+  BackgroundThreads background;
   for (;;) {
     Job job;
     {

@@ -12,6 +12,8 @@
 #include <thread>
 #include <vector>
 
+#include <oneapi/tbb/task_scheduler_observer.h>
+
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
 #include "ui/frame_pixels.h"
@@ -98,11 +100,20 @@ class RenderWorker {
   std::thread worker_;
 };
 
-//! Lowers the calling thread's scheduling priority (Linux nice +kBackgroundNice), so that when the
-//! UI thread and the rasteriser want a core the background renderer yields it. Threads it starts
-//! inherit the priority.
+//! Lowers the calling thread's scheduling priority to nice kBackgroundNice (Linux), so that when
+//! the UI thread and the rasteriser want a core the background work yields it.
 void lowerThreadPriority();
 inline constexpr int kBackgroundNice = 10;
+
+//! Lowers the calling thread's priority and, while it lives, that of every oneTBB worker joining
+//! the thread's arena (the scene build's parallel loops). Workers keep the lowered priority: in
+//! this process oneTBB runs background work only. Create it on the background thread.
+class BackgroundThreads : public tbb::task_scheduler_observer {
+ public:
+  BackgroundThreads();
+  ~BackgroundThreads() override;
+  void on_scheduler_entry(bool isWorker) override;
+};
 
 //! Opens `data` as a built-in data set ("name[:size]") when the name is one, else as a file.
 std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data);

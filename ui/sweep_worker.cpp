@@ -45,7 +45,7 @@ void SweepWorker::run(std::shared_ptr<const VolumeSource> source, ClusterOptions
   // One worker thread: the nodes' times are then each one processor's work, which is what the
   // modelled time assumes, and the interactive renderer keeps the other cores.
   base.threads = 1;
-  lowerThreadPriority();
+  BackgroundThreads background;
   request.recordPhases = false;
   std::vector<int> counts;
   {
