@@ -137,8 +137,9 @@ bool DamageRenderer::render(ImDrawData* data, int width, int height, const ImVec
   std::vector<std::uint8_t> kept;
   if (verifyPending_ && !whole && emptyRect(region)) kept = readPixels(width, height);
   if (emptyRect(region) && kept.empty() && !everyFrame_) return false;
-  if (whole || !kept.empty() || everyFrame_) region = ImVec4(data->DisplayPos.x, data->DisplayPos.y, data->DisplayPos.x + data->DisplaySize.x,
-                             data->DisplayPos.y + data->DisplaySize.y);
+  if (whole || !kept.empty() || everyFrame_)
+    region = ImVec4(data->DisplayPos.x, data->DisplayPos.y, data->DisplayPos.x + data->DisplaySize.x,
+                    data->DisplayPos.y + data->DisplaySize.y);
   // Whole pixels, rounded outwards, so the clear and the clipped draws cover the same pixels.
   region = ImVec4(std::floor(region.x), std::floor(region.y), std::ceil(region.z), std::ceil(region.w));
   for (int i = 0; i < data->CmdListsCount; ++i)
