@@ -27,8 +27,14 @@ struct Setup {
   }
 };
 
-// Both ways of running nodes: oneTBB tasks that suspend, and one thread per node (sanitizer builds).
+// Both ways of running nodes: oneTBB tasks that suspend, and one thread per node. Sanitizer
+// builds run only threads: ASan cannot follow an exception thrown on a task stack that was
+// suspended and resumed (swapcontext), and reports its own stale poison later.
+#if defined(KDSWAP_SANITIZED)
+constexpr NodeExecution kExecutions[] = {NodeExecution::Threads};
+#else
 constexpr NodeExecution kExecutions[] = {NodeExecution::Tasks, NodeExecution::Threads};
+#endif
 const char* name(NodeExecution e) { return e == NodeExecution::Tasks ? "tasks" : "threads"; }
 
 // Runs one faulty frame, returns its error message, then checks the next frame is right.
