@@ -176,6 +176,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
   for (int i = 0; i <= repeats; ++i) {
     network.reset();
     std::vector<Image> partial = source;  // copied outside the timed region
+    std::vector<Tile> finished(static_cast<std::size_t>(nodes));  // and released outside it (with the buffers they share)
     std::vector<double> compute(std::size_t(nodes), 0.0);
     const double t0 = nowSeconds();
     arena.execute([&] {
@@ -186,7 +187,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
           IgnorePhases phases;
           const double start = nowSeconds();
           try {
-            strategy->compose(std::move(partial[std::size_t(r)]), frame, order, comm, phases);
+            finished[std::size_t(r)] = strategy->compose(std::move(partial[std::size_t(r)]), frame, order, comm, phases);
           } catch (const std::exception& e) {
             network.abort("node " + std::to_string(r) + ": " + e.what());
           }

@@ -1,6 +1,9 @@
 // Host: brick distribution and tile gathering.
 #include "core/cluster/host.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include "core/cluster/node_program.h"
 #include "core/composite/image_message.h"
 #include "core/util/error.h"
@@ -29,7 +32,7 @@ void distributePieces(const VolumeSource& source, const BrickLayout& layout, Com
 }
 
 Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<Rect>* regions) {
-  Image out(frame);
+  Image out(frame);  // transparent where a tile's pixels do not reach
   std::vector<unsigned char> covered(std::size_t(frame.area()), 0);
   std::int64_t coveredCount = 0;
   if (regions) regions->assign(tiles.size(), Rect{});
@@ -38,18 +41,21 @@ Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<
     if (m.header.size() != 8) throw Error(who + ": malformed header");
     const Rect region{int(m.header[4]), int(m.header[5]), int(m.header[6]), int(m.header[7])};
     m.header.resize(4);
-    Image image = imageFromMessage(m);
-    if (!frame.contains(region) || !region.contains(image.rect()))
+    const ImageView pixels = viewOfMessage(m);  // read where the node left them (or as received)
+    if (region.w < 0 || region.h < 0 || !frame.contains(region) || !region.contains(pixels.rect))
       throw Error(who + ": image lies outside its region or the frame");
     if (regions && m.source >= 0 && std::size_t(m.source) < regions->size()) (*regions)[std::size_t(m.source)] = region;
-    for (int y = region.y; y < region.bottom(); ++y)
-      for (int x = region.x; x < region.right(); ++x) {
-        unsigned char& c = covered[std::size_t(y - frame.y) * frame.w + (x - frame.x)];
-        if (c) throw Error(who + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") also belongs to another tile");
-        c = 1;
-        ++coveredCount;
-        out.at(x, y) = image.sample(x, y);
-      }
+    for (int y = region.y; y < region.bottom(); ++y) {
+      unsigned char* row = &covered[std::size_t(y - frame.y) * frame.w + (region.x - frame.x)];
+      const auto taken = std::find(row, row + region.w, 1);
+      if (taken != row + region.w)
+        throw Error(who + ": pixel (" + std::to_string(region.x + int(taken - row)) + ", " + std::to_string(y) +
+                    ") also belongs to another tile");
+      std::memset(row, 1, std::size_t(region.w));
+      coveredCount += region.w;
+    }
+    for (int y = pixels.rect.y; y < pixels.rect.bottom(); ++y)
+      std::memcpy(&out.at(pixels.rect.x, y), pixels.row(y), sizeof(Rgba) * std::size_t(pixels.rect.w));
   }
   if (coveredCount != frame.area())
     throw Error("gather: tiles cover " + std::to_string(coveredCount) + " of " + std::to_string(frame.area()) + " pixels");

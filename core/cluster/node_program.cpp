@@ -177,7 +177,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
 
   Tile tile = plan.strategy.compose(std::move(partial), plan.frame(), plan.order, comm, observer);
 
-  Message out = imageToMessage(std::move(tile.image));
+  Message out = lendPixels(tile.pixels, std::move(tile.owner));  // the host reads it in place
   const Rect& r = tile.region;
   out.header.insert(out.header.end(), {r.x, r.y, r.w, r.h});
   comm.send(Communicator::kHost, kTileTag, std::move(out));

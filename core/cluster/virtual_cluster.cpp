@@ -154,7 +154,10 @@ InprocCommunicator::SendFilter VirtualCluster::faultFilter(int rank) {
         if (index == fault.message) std::this_thread::sleep_for(std::chrono::duration<double>(fault.delaySeconds));
         return true;
       case FaultPlan::Kind::CorruptMessage:
-        if (index == fault.message && !m.payload.empty()) m.payload[m.payload.size() / 2] += 0.5f;
+        if (index == fault.message) {
+          m.flatten();  // corrupt the message's own copy, never the sender's lent pixels
+          if (!m.payload.empty()) m.payload[m.payload.size() / 2] += 0.5f;
+        }
         return true;
       default:
         return true;

@@ -13,6 +13,7 @@ void MpiCommunicator::send(int dest, int tag, Message message) {
   message.tag = tag;
   counters_.bytesSent += message.bytes();
   ++counters_.messagesSent;
+  message.flatten();  // lent pixels leave the process as a copy
   network_.deliver(dest, std::move(message));
 }
 

@@ -14,6 +14,7 @@
 #include <bit>
 
 #include "core/composite/image_message.h"
+#include "core/composite/working_image.h"
 
 namespace kdswap {
 namespace {
@@ -39,29 +40,29 @@ std::pair<Rect, Rect> splitRegion(const Rect& region, int axis) {
 
 }  // namespace
 
-Tile BinarySwap::compose(Image image, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+Tile BinarySwap::compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
                          PhaseObserver& phases) const {
   const int nodes = comm.size(), me = comm.rank();
   const int swapping = int(std::bit_floor(unsigned(nodes)));
   const int extras = nodes - swapping;
-  auto prepare = [&](const Image& part) { return options_.sparse ? trimToContent(part) : part; };
+  WorkingImage image(std::move(partial));
   Rect region = frame;
 
   if (extras > 0) {  // fold the extra nodes into their k-d siblings
     std::int64_t pixels = 0;
     if (me >= swapping) {
       phases.beginPhase("fold", me - swapping);
-      comm.send(me - swapping, kFoldTag, imageToMessage(prepare(image)));
-      image = Image{};
+      comm.send(me - swapping, kFoldTag, image.lend(image.rect(), options_.sparse));
+      image = WorkingImage{};
       region = Rect{};
     } else if (me < extras) {
       phases.beginPhase("fold", me + swapping);
-      Message in = comm.receive(me + swapping, kFoldTag);
-      image = mergeImages(std::move(image), imageFromMessage(in), order.inFront(me + swapping, me), pixels);
+      const Message in = comm.receive(me + swapping, kFoldTag);
+      image.merge(viewOfMessage(in), order.inFront(me + swapping, me), pixels);
     } else {
       phases.beginPhase("fold", -1);
     }
-    phases.endPhase(region, image, pixels);
+    phases.endPhase(region, image.image(), pixels);
   }
 
   for (int stride = 1, round = 0; stride < swapping; stride *= 2, ++round) {
@@ -76,17 +77,16 @@ Tile BinarySwap::compose(Image image, const Rect& frame, const VisibilityOrder& 
     const bool keepFirst = (me & stride) == 0;
     const Rect keep = keepFirst ? first : second;
     const Rect give = keepFirst ? second : first;
-    comm.send(partner, kSwapTag + round, imageToMessage(prepare(image.crop(give))));
-    // The kept half is not copied out: the partner's half lands on it in place, and pixels
-    // outside `region` are stale from here on (cropped away once, at the end).
-    Message in = comm.receive(partner, kSwapTag + round);
+    // The given half is lent, not copied; the partner's half lands on the kept one in place.
+    // Pixels outside `region` are stale from here on (cut away once, at the end).
+    comm.send(partner, kSwapTag + round, image.lend(give, options_.sparse));
+    const Message in = comm.receive(partner, kSwapTag + round);
     std::int64_t pixels = 0;
-    image = mergeImages(std::move(image), imageFromMessage(in), order.inFront(partner, me), pixels);
+    image.merge(viewOfMessage(in), order.inFront(partner, me), pixels);
     region = keep;
-    phases.endPhase(region, image, pixels);
+    phases.endPhase(region, image.image(), pixels);
   }
-  if (image.rect() == region || image.empty()) return Tile{region, std::move(image)};
-  return Tile{region, image.crop(region)};
+  return image.finish(region);
 }
 
 }  // namespace kdswap

@@ -58,7 +58,7 @@ Tile BinaryTree::compose(Image image, const Rect& frame, const VisibilityOrder& 
     phases.endPhase(active ? frame : Rect{}, image, pixels);
   }
   if (!active) return Tile{};
-  return Tile{frame, image.crop(frame)};
+  return Tile::owning(frame, std::move(image));
 }
 
 }  // namespace kdswap

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "core/composite/image_message.h"
+#include "core/composite/working_image.h"
 
 namespace kdswap {
 namespace {
@@ -44,10 +45,10 @@ Rect tileOf(const Rect& frame, int count, int index) {
 
 }  // namespace
 
-Tile DirectSend::compose(Image image, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+Tile DirectSend::compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
                          PhaseObserver& phases) const {
   const int nodes = comm.size(), me = comm.rank();
-  auto prepare = [&](const Image& part) { return options_.sparse ? trimToContent(part) : part; };
+  WorkingImage image(std::move(partial));
   const Rect mine = tileOf(frame, nodes, me);
   // The partner shown is the front-most node this one hears from, else the first it sends to.
   int partner = -1;
@@ -63,25 +64,28 @@ Tile DirectSend::compose(Image image, const Rect& frame, const VisibilityOrder& 
   for (int step = 1; step < nodes; ++step) {
     const int dest = (me + step) % nodes;
     const Rect tile = tileOf(frame, nodes, dest);
-    if (!tile.empty()) comm.send(dest, kDirectTag, imageToMessage(prepare(image.crop(tile))));
+    if (!tile.empty()) comm.send(dest, kDirectTag, image.lend(tile, options_.sparse));
   }
 
-  // Front to back: everything accumulated so far lies in front of the next piece.
-  Image result;
+  // Every node's part of our tile, front to back, blended in one pass.
   std::int64_t pixels = 0;
-  if (!mine.empty())
+  if (!mine.empty()) {
+    std::vector<Message> received;
+    std::vector<ImageView> layers;
+    int self = -1;
     for (int n : order.frontToBack) {
-      Image piece;
       if (n == me) {
-        piece = image.crop(mine);
+        self = int(layers.size());
+        layers.push_back(image.view(mine));
       } else {
-        Message in = comm.receive(n, kDirectTag);
-        piece = imageFromMessage(in);
+        received.push_back(comm.receive(n, kDirectTag));
+        layers.push_back(viewOfMessage(received.back()));
       }
-      result = mergeImages(std::move(result), std::move(piece), false, pixels);
     }
-  phases.endPhase(mine, result, pixels);
-  return Tile{mine, std::move(result)};
+    image.composeLayers(mine, layers, self, pixels);
+  }
+  phases.endPhase(mine, image.image(), pixels);
+  return image.finish(mine);
 }
 
 }  // namespace kdswap

@@ -8,7 +8,12 @@ namespace kdswap {
 
 //! The image's pixels are moved into the message (header: x, y, w, h).
 Message imageToMessage(Image image);
-//! Takes the pixels back out; throws kdswap::Error if the header and payload disagree.
+//! A message lending the pixels `view` sees (header as above); `owner` keeps them alive.
+Message lendPixels(const ImageView& view, std::shared_ptr<const void> owner);
+//! The pixels a message carries, moved or lent, seen in place (valid while the message lives);
+//! throws kdswap::Error if the header and the data disagree.
+ImageView viewOfMessage(const Message& message);
+//! Takes the pixels out (copying them if they were lent); throws as viewOfMessage does.
 Image imageFromMessage(Message& message);
 //! Composite of `mine` and `theirs` over the union of their rects; `theirsInFront` gives the
 //! order. `pixels` receives the number of pixels blended.

@@ -19,6 +19,7 @@
 #include <algorithm>
 
 #include "core/composite/image_message.h"
+#include "core/composite/working_image.h"
 #include "core/util/error.h"
 
 namespace kdswap {
@@ -69,11 +70,11 @@ TreeShape RadixK::treeShape(int nodes) const {
   return levelShape(fromRoot);
 }
 
-Tile RadixK::compose(Image image, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+Tile RadixK::compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
                      PhaseObserver& phases) const {
   const int me = comm.rank();
   const std::vector<int> rounds = radices(comm.size());
-  auto prepare = [&](const Image& part) { return options_.sparse ? trimToContent(part) : part; };
+  WorkingImage image(std::move(partial));
   Rect region = frame;
 
   for (int round = 0, stride = 1; round < int(rounds.size()); stride *= rounds[std::size_t(round)], ++round) {
@@ -82,34 +83,35 @@ Tile RadixK::compose(Image image, const Rect& frame, const VisibilityOrder& orde
     const int axis = round % 2;
     phases.beginPhase("radix-" + std::to_string(k), base + ((digit + 1) % k) * stride);
 
-    // Send every other member its part (staggered, as in direct-send), keep ours.
+    // Lend every other member its part (staggered, as in direct-send), keep ours.
     for (int step = 1; step < k; ++step) {
       const int j = (digit + step) % k;
-      comm.send(base + j * stride, kRadixTag + round, imageToMessage(prepare(image.crop(sliceOf(region, axis, j, k)))));
+      comm.send(base + j * stride, kRadixTag + round, image.lend(sliceOf(region, axis, j, k), options_.sparse));
     }
     const Rect keep = sliceOf(region, axis, digit, k);
-    Image own = image.crop(keep);
-    image = Image{};  // the rest of the region is no longer ours
 
-    // The members' images of our part, front to back: what is accumulated lies in front.
+    // The members' images of our part, front to back, blended in one pass.
     std::vector<int> members(static_cast<std::size_t>(k));
     for (int j = 0; j < k; ++j) members[std::size_t(j)] = base + j * stride;
     std::sort(members.begin(), members.end(), [&](int a, int b) { return order.inFront(a, b); });
-    std::int64_t pixels = 0;
+    std::vector<Message> received;
+    std::vector<ImageView> layers;
+    int self = -1;
     for (int member : members) {
-      Image piece;
       if (member == me) {
-        piece = std::move(own);
+        self = int(layers.size());
+        layers.push_back(image.view(keep));
       } else {
-        Message in = comm.receive(member, kRadixTag + round);
-        piece = imageFromMessage(in);
+        received.push_back(comm.receive(member, kRadixTag + round));
+        layers.push_back(viewOfMessage(received.back()));
       }
-      image = mergeImages(std::move(image), std::move(piece), false, pixels);
     }
+    std::int64_t pixels = 0;
+    image.composeLayers(keep, layers, self, pixels);
     region = keep;
-    phases.endPhase(region, image, pixels);
+    phases.endPhase(region, image.image(), pixels);
   }
-  return Tile{region, std::move(image)};
+  return image.finish(region);
 }
 
 }  // namespace kdswap

@@ -31,7 +31,7 @@ Tile Sequential::compose(Image image, const Rect& frame, const VisibilityOrder& 
   }
   Image finished = image.crop(frame);
   phases.endPhase(frame, finished, pixels);
-  return Tile{frame, std::move(finished)};
+  return Tile::owning(frame, std::move(finished));
 }
 
 }  // namespace kdswap

@@ -16,10 +16,19 @@
 namespace kdswap {
 
 //! What a node holds when compositing ends: it alone is responsible for the pixels of `region`
-//! (maybe empty); `image` covers a part of `region` (pixels outside it are transparent).
+//! (maybe empty); `pixels` covers a part of `region` (pixels outside it are transparent). The
+//! pixels usually stay where compositing left them, in a buffer `owner` keeps alive, so the tile
+//! reaches the host without another copy.
 struct Tile {
   Rect region;
-  Image image;
+  ImageView pixels;
+  std::shared_ptr<const void> owner;
+
+  //! A tile holding `image`'s pixels inside `region`.
+  static Tile owning(const Rect& region, Image image) {
+    auto kept = std::make_shared<Image>(std::move(image));
+    return Tile{region, kept->view(region), kept};
+  }
 };
 
 //! Told about every compositing phase on every node, so rows of the phase grid line up: a node

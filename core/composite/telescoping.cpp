@@ -21,6 +21,7 @@
 #include <bit>
 
 #include "core/composite/image_message.h"
+#include "core/composite/working_image.h"
 
 namespace kdswap {
 namespace {
@@ -87,7 +88,7 @@ TreeShape Telescoping::treeShape(int nodes) const {
   return shape;
 }
 
-Tile Telescoping::compose(Image image, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+Tile Telescoping::compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
                           PhaseObserver& phases) const {
   const int me = comm.rank();
   const std::vector<PowerGroup> groups = groupsOf(comm.size());
@@ -95,28 +96,28 @@ Tile Telescoping::compose(Image image, const Rect& frame, const VisibilityOrder&
   while (me >= groups[std::size_t(mine)].first + groups[std::size_t(mine)].size) ++mine;
   const PowerGroup& group = groups[std::size_t(mine)];
   const int local = me - group.first;
-  auto prepare = [&](const Image& part) { return options_.sparse ? trimToContent(part) : part; };
+  WorkingImage image(std::move(partial));
   Rect region = frame;
 
   // Binary swap inside each group; smaller groups finish early and report idle rounds.
   for (int round = 0; round < groups[0].rounds(); ++round) {
     if (round >= group.rounds()) {
       phases.beginPhase("swap", -1);
-      phases.endPhase(region, image, 0);
+      phases.endPhase(region, image.image(), 0);
       continue;
     }
     const int partner = group.first + (local ^ (1 << round));
     phases.beginPhase("swap", partner);
     const bool second = (local >> round) & 1;
     const Rect keep = halfOf(region, round % 2, second), give = halfOf(region, round % 2, !second);
-    comm.send(partner, kSwapTag + round, imageToMessage(prepare(image.crop(give))));
-    Image kept = image.crop(keep);
-    image = Image{};
-    Message in = comm.receive(partner, kSwapTag + round);
+    // As in binary swap: the given half is lent, the partner's lands on the kept one in place,
+    // and pixels outside `region` are stale from here on.
+    comm.send(partner, kSwapTag + round, image.lend(give, options_.sparse));
+    const Message in = comm.receive(partner, kSwapTag + round);
     std::int64_t pixels = 0;
-    image = mergeImages(std::move(kept), imageFromMessage(in), order.inFront(partner, me), pixels);
+    image.merge(viewOfMessage(in), order.inFront(partner, me), pixels);
     region = keep;
-    phases.endPhase(region, image, pixels);
+    phases.endPhase(region, image.image(), pixels);
   }
 
   // Telescoping, smallest group first: step s sends group G-1-s into group G-2-s.
@@ -130,20 +131,20 @@ Tile Telescoping::compose(Image image, const Rect& frame, const VisibilityOrder&
       phases.beginPhase("telescope", into.first + local);
       for (int u = local; u < into.size; u += from.size)
         comm.send(into.first + u, kTelescopeTag + step,
-                  imageToMessage(prepare(image.crop(pieceAfter(frame, u, into.rounds())))));
-      image = Image{};
+                  image.lend(pieceAfter(frame, u, into.rounds()).intersect(region), options_.sparse));
+      image = WorkingImage{};
       region = Rect{};
     } else if (&into == &group) {
       const int sender = from.first + local % from.size;
       phases.beginPhase("telescope", sender);
-      Message in = comm.receive(sender, kTelescopeTag + step);
-      image = mergeImages(std::move(image), imageFromMessage(in), order.inFront(sender, me), pixels);
+      const Message in = comm.receive(sender, kTelescopeTag + step);
+      image.merge(viewOfMessage(in), order.inFront(sender, me), pixels);
     } else {
       phases.beginPhase("telescope", -1);
     }
-    phases.endPhase(region, image, pixels);
+    phases.endPhase(region, image.image(), pixels);
   }
-  return Tile{region, std::move(image)};
+  return image.finish(region);
 }
 
 }  // namespace kdswap

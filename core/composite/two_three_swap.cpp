@@ -26,6 +26,7 @@
 #include <bit>
 
 #include "core/composite/image_message.h"
+#include "core/composite/working_image.h"
 #include "core/util/check.h"
 
 namespace kdswap {
@@ -95,11 +96,11 @@ TreeShape TwoThreeSwap::treeShape(int nodes) const {
   return shape;
 }
 
-Tile TwoThreeSwap::compose(Image image, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
+Tile TwoThreeSwap::compose(Image partial, const Rect& frame, const VisibilityOrder& order, Communicator& comm,
                            PhaseObserver& phases) const {
   const int me = comm.rank();
   const int axis = frame.h >= frame.w ? 1 : 0;
-  auto prepare = [&](const Image& part) { return options_.sparse ? trimToContent(part) : part; };
+  WorkingImage image(std::move(partial));
   const std::vector<Group> path = groupsOf(comm.size(), me);
   Rect region = frame;
 
@@ -132,29 +133,31 @@ Tile TwoThreeSwap::compose(Image image, const Rect& frame, const VisibilityOrder
       }
     phases.beginPhase(g.children.size() == 3 ? "3-swap" : "2-swap", partner);
 
-    // Send each member of the group the part of our old band that lies in its new band.
+    // Lend each member of the group the part of our old band that lies in its new band.
     for (int step = 1; step < n; ++step) {
       const int p = g.first + (me - g.first + step) % n;
       const Rect overlap = sliceOf(frame, axis, p - g.first, n).intersect(region);
-      if (!overlap.empty()) comm.send(p, tag, imageToMessage(prepare(image.crop(overlap))));
+      if (!overlap.empty()) comm.send(p, tag, image.lend(overlap, options_.sparse));
     }
-    Image own = image.crop(mine);
-    image = Image{};
-    std::int64_t pixels = 0;
+    // Every part of our new band, front to back, blended in one pass.
+    std::vector<Message> received;
+    std::vector<ImageView> layers;
+    int self = -1;
     for (const auto& [node, overlap] : sources) {
-      Image piece;
       if (node == me) {
-        piece = std::move(own);
+        self = int(layers.size());
+        layers.push_back(image.view(overlap));
       } else {
-        Message in = comm.receive(node, tag);
-        piece = imageFromMessage(in);
+        received.push_back(comm.receive(node, tag));
+        layers.push_back(viewOfMessage(received.back()));
       }
-      image = mergeImages(std::move(image), std::move(piece), false, pixels);
     }
+    std::int64_t pixels = 0;
+    image.composeLayers(mine, layers, self, pixels);
     region = mine;
-    phases.endPhase(region, image, pixels);
+    phases.endPhase(region, image.image(), pixels);
   }
-  return Tile{region, std::move(image)};
+  return image.finish(region);
 }
 
 }  // namespace kdswap

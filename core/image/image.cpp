@@ -16,18 +16,17 @@ Image::Image(const Rect& rect, std::vector<float> values)
   KDSWAP_CHECK_EQ(values_.size(), std::size_t(rect_.area()) * 4);
 }
 
-Image Image::crop(const Rect& r) const {
+Image::Image(const ImageView& view) : rect_(view.rect.empty() ? Rect{} : view.rect) {
   // Rows are appended, not copied over zeros: one pass over the pixels (compositing moves a lot
   // of them, so this matters).
-  const Rect o = rect_.intersect(r);
-  std::vector<float> values;
-  values.reserve(std::size_t(o.area()) * 4);
-  for (int y = o.y; y < o.bottom(); ++y) {
-    const float* row = &at(o.x, y).r;
-    values.insert(values.end(), row, row + std::size_t(o.w) * 4);
+  values_.reserve(std::size_t(rect_.area()) * 4);
+  for (int y = rect_.y; y < rect_.bottom(); ++y) {
+    const float* row = &view.row(y)->r;
+    values_.insert(values_.end(), row, row + std::size_t(rect_.w) * 4);
   }
-  return Image(o, std::move(values));
 }
+
+Image Image::crop(const Rect& r) const { return Image(view(r)); }
 
 Image Image::extendedTo(const Rect& r) const {
   KDSWAP_CHECK(r.contains(rect_));
@@ -37,14 +36,17 @@ Image Image::extendedTo(const Rect& r) const {
   return out;
 }
 
-Rect Image::opaqueBounds() const {
-  int x0 = rect_.right(), y0 = rect_.bottom(), x1 = rect_.x - 1, y1 = rect_.y - 1;
-  for (int y = rect_.y; y < rect_.bottom(); ++y) {
-    const Rgba* row = &at(rect_.x, y);
-    for (int i = 0; i < rect_.w; ++i) {
+Rect Image::opaqueBounds() const { return kdswap::opaqueBounds(view()); }
+
+Rect opaqueBounds(const ImageView& view) {
+  const Rect& r = view.rect;
+  int x0 = r.right(), y0 = r.bottom(), x1 = r.x - 1, y1 = r.y - 1;
+  for (int y = r.y; y < r.bottom(); ++y) {
+    const Rgba* row = view.row(y);
+    for (int i = 0; i < r.w; ++i) {
       if (row[i].a > 0.0f) {
-        x0 = std::min(x0, rect_.x + i);
-        x1 = std::max(x1, rect_.x + i);
+        x0 = std::min(x0, r.x + i);
+        x1 = std::max(x1, r.x + i);
         y0 = std::min(y0, y);
         y1 = std::max(y1, y);
       }
@@ -54,13 +56,13 @@ Rect Image::opaqueBounds() const {
   return Rect{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
-std::int64_t compositeInto(Image& dst, const Image& other, bool otherInFront) {
-  const Rect& r = other.rect();
+std::int64_t compositeInto(Image& dst, const ImageView& other, bool otherInFront) {
+  const Rect& r = other.rect;
   if (r.empty()) return 0;
   KDSWAP_CHECK(dst.rect().contains(r));
   for (int y = r.y; y < r.bottom(); ++y) {
     Rgba* d = &dst.at(r.x, y);
-    const Rgba* s = &other.at(r.x, y);
+    const Rgba* s = other.row(y);
     if (otherInFront) {
       for (int i = 0; i < r.w; ++i) d[i] = over(s[i], d[i]);
     } else {

@@ -5,13 +5,10 @@
 
 #include <vector>
 
+#include "core/image/image_view.h"
 #include "core/image/rect.h"
 
 namespace kdswap {
-
-struct Rgba {
-  float r = 0, g = 0, b = 0, a = 0;
-};
 
 class Image {
  public:
@@ -20,6 +17,8 @@ class Image {
   explicit Image(const Rect& rect);
   //! Adopts `values` (4 floats per pixel, row-major over `rect`); used when a message arrives.
   Image(const Rect& rect, std::vector<float> values);
+  //! A copy of the pixels `view` sees.
+  explicit Image(const ImageView& view);
 
   const Rect& rect() const { return rect_; }
   bool empty() const { return rect_.empty(); }
@@ -39,6 +38,11 @@ class Image {
   const std::vector<float>& values() const { return values_; }
   std::size_t bytes() const { return values_.size() * sizeof(float); }
 
+  //! Read-only view of the whole image, or of the part inside `r`; valid while the image lives
+  //! and is not resized.
+  ImageView view() const { return ImageView{rect_, data(), rect_.w}; }
+  ImageView view(const Rect& r) const { return view().within(r); }
+
   //! Copy of the part of this image inside `r` (the result's rect is rect() ∩ r).
   Image crop(const Rect& r) const;
   //! This image re-laid over `r` (which must contain rect()); new pixels are transparent.
@@ -55,6 +59,9 @@ class Image {
   std::vector<float> values_;  //!< 4 floats per pixel, premultiplied r, g, b, a
 };
 
+//! Smallest rect holding every pixel of `view` with alpha > 0 (empty if none).
+Rect opaqueBounds(const ImageView& view);
+
 //! front over back, premultiplied: back + (1 - front.a) * ... written as front + (1 - front.a) * back.
 inline Rgba over(const Rgba& front, const Rgba& back) {
   const float t = 1.0f - front.a;
@@ -64,7 +71,10 @@ inline Rgba over(const Rgba& front, const Rgba& back) {
 //! Composites `other` into `dst` over the pixels of other.rect(), which dst.rect() must contain.
 //! `otherInFront` says which of the two is nearer the eye for this view.
 //! Returns the number of pixels composited.
-std::int64_t compositeInto(Image& dst, const Image& other, bool otherInFront);
+std::int64_t compositeInto(Image& dst, const ImageView& other, bool otherInFront);
+inline std::int64_t compositeInto(Image& dst, const Image& other, bool otherInFront) {
+  return compositeInto(dst, other.view(), otherInFront);
+}
 
 //! Full-frame image assembled from pieces (tiles or partial images); pixels outside every piece
 //! are transparent. Pieces are pasted, not composited.
