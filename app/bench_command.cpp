@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/scene_options.h"
 #include "core/bench/bench_grid.h"
 #include "core/bench/bench_report.h"
 #include "core/bench/micro_bench.h"
@@ -123,16 +124,8 @@ void runGrid(const BenchOptions& o) {
   g.bricksPerNode = parseList<int>(o.bricksPerNode, "--bricks-per-node", 1, 64);
   for (const std::string& b : g.balances)
     if (b != "space" && b != "cost") throw Error("--balance \"" + o.balance + "\": expected space, cost or space,cost");
-  for (const std::string& item : parseNames(o.speeds)) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (item.empty() || used != item.size() || !(v >= 0.01 && v <= 100.0))
-      throw Error("--speeds \"" + o.speeds + "\": \"" + item + "\" is not a speed from 0.01 to 100");
+  for (double v : parseNumbers(o.speeds, ',', "--speeds")) {
+    if (!(v >= 0.01 && v <= 100.0)) throw Error("--speeds \"" + o.speeds + "\": each speed must be from 0.01 to 100");
     g.speedPattern.push_back(v);
   }
   std::filesystem::create_directories(o.outDir);

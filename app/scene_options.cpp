@@ -12,9 +12,8 @@
 #include "core/volume/reader.h"
 
 namespace kdswap {
-namespace {
 
-std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& what) {
+std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& option) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
@@ -27,13 +26,11 @@ std::vector<double> parseNumbers(const std::string& text, char separator, const 
       used = 0;
     }
     if (used != item.size() || item.empty() || !std::isfinite(v))
-      throw Error(what + " \"" + text + "\": \"" + item + "\" is not a number");
+      throw Error(option + " \"" + text + "\": \"" + item + "\" is not a number");
     values.push_back(v);
   }
   return values;
 }
-
-}  // namespace
 
 void parseImageSize(const std::string& text, int& width, int& height) {
   std::vector<double> v;

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -58,5 +59,9 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& options);
 Scene buildScene(const SceneOptions& options);
 //! "WxH" -> (w, h), each 1..16384. Throws kdswap::Error.
 void parseImageSize(const std::string& text, int& width, int& height);
+//! The value of `option` as finite numbers between `separator`s ("1,0.5" -> {1, 0.5}; "" -> {}).
+//! Ranges are the caller's to check. Throws kdswap::Error naming `option`, the text and the item
+//! that is not a number (an empty item, as in "1,,2", is not one).
+std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& option);
 
 }  // namespace kdswap

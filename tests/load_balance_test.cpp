@@ -118,7 +118,6 @@ TEST_CASE("node speeds: a node twice as fast is given twice the work") {
 
 TEST_CASE("balanced partitions keep the distributed image equal to the single-node image") {
   auto volume = test::makeBlobs({37, 31, 29});
-  const Brick whole = wholeVolumeBrick(*volume);
   FrameRequest request;
   request.width = 43;
   request.height = 37;
@@ -139,10 +138,7 @@ TEST_CASE("balanced partitions keep the distributed image equal to the single-no
       request.view.azimuthDeg = angle(rng);
       request.view.elevationDeg = angle(rng) / 3.0f;
       const FrameResult frame = cluster.renderFrame(request);
-      const ReferenceResult ref = renderReference(whole, request.view, request.width, request.height, request.transfer,
-                                                  request.settings,
-                                                  glm::vec2(volume->info().minValue, volume->info().maxValue));
-      CHECK_MESSAGE(maxAbsDifference(frame.image, ref.image, ref.image.rect()) <= 1e-5f, strategy << " P=" << nodes);
+      CHECK_MESSAGE(test::diffAgainstReference(*volume, request, frame.image) <= 1e-5f, strategy << " P=" << nodes);
       // Modelled times divide each node's work by its speed.
       for (const NodeReport& n : frame.stats.perNode)
         CHECK(n.speed == doctest::Approx(options.speeds[std::size_t(n.rank)]));

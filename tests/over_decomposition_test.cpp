@@ -68,7 +68,6 @@ TEST_CASE("bricks are handed out on demand: idle nodes take work from the busies
 
 TEST_CASE("over-decomposed frames equal the single-node image while bricks move between nodes") {
   auto volume = test::makeBlobs({35, 30, 28});
-  const Brick whole = wholeVolumeBrick(*volume);
   FrameRequest request;
   request.width = 39;
   request.height = 34;
@@ -90,6 +89,7 @@ TEST_CASE("over-decomposed frames equal the single-node image while bricks move 
         options.checksums = true;
         VirtualCluster cluster(*volume, options);
         for (int frame = 0; frame < 3; ++frame) {
+          CAPTURE(frame);
           // Random costs: a different hand-out, and different bricks shipped, every frame.
           std::vector<double> costs(std::size_t(nodes * perNode));
           for (double& c : costs) c = cost(rng);
@@ -97,10 +97,7 @@ TEST_CASE("over-decomposed frames equal the single-node image while bricks move 
           request.view.azimuthDeg = angle(rng);
           request.view.elevationDeg = angle(rng) / 3.0f;
           const FrameResult result = cluster.renderFrame(request);
-          const ReferenceResult ref = renderReference(whole, request.view, request.width, request.height,
-                                                      request.transfer, request.settings,
-                                                      glm::vec2(volume->info().minValue, volume->info().maxValue));
-          CHECK(maxAbsDifference(result.image, ref.image, ref.image.rect()) <= 1e-5f);
+          CHECK(test::diffAgainstReference(*volume, request, result.image) <= 1e-5f);
           std::multiset<int> rendered;
           for (const NodeReport& n : result.stats.perNode)
             for (const NodeReport::BrickRender& b : n.bricks) rendered.insert(b.brick);
@@ -114,7 +111,6 @@ TEST_CASE("over-decomposed frames equal the single-node image while bricks move 
 
 TEST_CASE("a failed over-decomposed frame is followed by a correct one, bricks shipped again") {
   auto volume = test::makeBlobs({24, 24, 24});
-  const Brick whole = wholeVolumeBrick(*volume);
   FrameRequest request;
   request.width = request.height = 32;
   request.transfer = test::testTransfer();
@@ -134,9 +130,6 @@ TEST_CASE("a failed over-decomposed frame is followed by a correct one, bricks s
   CHECK_THROWS_WITH_AS(cluster.renderFrame(request), doctest::Contains("node 2"), Error);
   cluster.setBrickCosts(costs);
   const FrameResult next = cluster.renderFrame(request);
-  const ReferenceResult ref = renderReference(whole, request.view, request.width, request.height, request.transfer,
-                                              request.settings,
-                                              glm::vec2(volume->info().minValue, volume->info().maxValue));
-  CHECK(maxAbsDifference(next.image, ref.image, ref.image.rect()) <= 1e-5f);
+  CHECK(test::diffAgainstReference(*volume, request, next.image) <= 1e-5f);
   CHECK(next.stats.toJson()["per_node"][0]["bricks_rendered"].size() < 4);
 }

@@ -49,6 +49,16 @@ inline TransferFunction testTransfer() {
                           {{0.0f, 0.0f}, {0.05f, 0.0f}, {0.3f, 0.08f}, {0.6f, 0.3f}, {1.0f, 0.7f}}, "test");
 }
 
+//! The largest channel difference between `image` and the single-node reference render of
+//! `request` (the whole of `volume` as one brick): the central invariant, distributed == single.
+//! Returned, not checked, so the CHECK, its tolerance and its message stay at the call site.
+inline float diffAgainstReference(const VolumeSource& volume, const FrameRequest& request, const Image& image) {
+  const ReferenceResult ref = renderReference(wholeVolumeBrick(volume), request.view, request.width, request.height,
+                                              request.transfer, request.settings,
+                                              resolveValueRange(request.settings, volume.info()));
+  return maxAbsDifference(image, ref.image, ref.image.rect());
+}
+
 inline std::string reproduce(int nodes, const std::string& strategy, const std::string& partition, int w, int h,
                              const View& v) {
   return "kdswap render --dataset <test volume> --nodes " + std::to_string(nodes) + " --composite " + strategy +
