@@ -6,6 +6,7 @@
 
 #include <bit>
 
+#include "core/composite/radix_k.h"
 #include "core/composite/registry.h"
 #include "core/util/error.h"
 #include "test_support.h"
@@ -76,6 +77,18 @@ TEST_CASE("radix-k with radices {4,2}, {8}, {2,2,2} and {2,4} matches the single
       checkMatchesReference(options, "radices " + std::to_string(radices.size()) + " rounds, first " +
                                          std::to_string(radices[0]));
     }
+}
+
+TEST_CASE("radix-k's default radices group P's prime factors into rounds of at most 8") {
+  const RadixK radix(CompositeOptions{});
+  CHECK(radix.radices(8) == std::vector<int>{8});
+  CHECK(radix.radices(12) == std::vector<int>{4, 3});
+  CHECK(radix.radices(64) == std::vector<int>{8, 8});
+  CHECK(radix.radices(1024) == std::vector<int>{8, 8, 8, 2});
+  CHECK(radix.radices(30) == std::vector<int>{6, 5});
+  CHECK(radix.radices(13) == std::vector<int>{13});
+  CHECK(radix.radices(1).empty());
+  checkMatchesReference(optionsFor("radix-k", 16, {}), "16 = 8 * 2 by default");
 }
 
 TEST_CASE("radix-k with mixed radices matches the single-node image for 12, 18 and 30 nodes") {

@@ -153,7 +153,8 @@ std::string formatCompositingTable(const std::vector<BinarySwapFigure>& figures)
   return out;
 }
 
-BinarySwapFigure measureCompositing(const std::string& name, int nodes, int width, int height, int repeats) {
+BinarySwapFigure measureCompositing(const std::string& name, int nodes, int width, int height, int repeats,
+                                    const CompositeOptions& options) {
   BinarySwapFigure f;
   f.strategy = name;
   f.nodes = nodes;
@@ -162,7 +163,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
   const Rect frame{0, 0, width, height};
   // Ranks in order are front to back: valid for every strategy's tree, whose subtrees hold
   // consecutive ranks.
-  const auto strategy = createStrategy(name);
+  const auto strategy = createStrategy(name, options);
   InprocNetwork network(nodes);
   VisibilityOrder order;
   for (int r = 0; r < nodes; ++r) order.frontToBack.push_back(r), order.position.push_back(r);

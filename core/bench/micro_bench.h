@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/composite/strategy.h"
+
 namespace kdswap {
 
 struct RayCastFigure {
@@ -41,7 +43,8 @@ std::vector<RayCastFigure> measureRayCasting(const MicroOptions& options);
 CompositeFigure measureOver(int width, int height, int repeats);
 BinarySwapFigure measureBinarySwap(int nodes, int width, int height, int repeats);
 //! Any registered strategy alone, on the same synthetic full-frame partial images.
-BinarySwapFigure measureCompositing(const std::string& strategy, int nodes, int width, int height, int repeats);
+BinarySwapFigure measureCompositing(const std::string& strategy, int nodes, int width, int height, int repeats,
+                                    const CompositeOptions& options = {});
 
 //! Issue 8's scale: Sandia's miniGraphics miniapp on this machine (MPI ranks sharing the 2 cores,
 //! 1024x1024, float colour, run-length encoding), and kdswap's target of half its time.

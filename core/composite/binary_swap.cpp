@@ -1,7 +1,7 @@
 // Binary-swap compositing (Ma et al. 1993, section 3.4); any P by folding.
 //
 // Phases stride = 1, 2, 4, ...: node r pairs with r XOR stride. Both hold an image of the same
-// screen region; they cut it in half (along x in even phases, y in odd ones), the node whose
+// screen region; they cut it in half (across y in even phases, x in odd ones), the node whose
 // stride bit is clear keeps the first half, and each sends the other half to its partner. After
 // log2(P) phases every node owns 1/P of the frame, fully composited. The pair's images come from
 // two sibling subtrees of the k-d tree, so "which is in front" is decided by the tree for this
@@ -73,7 +73,7 @@ Tile BinarySwap::compose(Image partial, const Rect& frame, const VisibilityOrder
     }
     const int partner = me ^ stride;
     phases.beginPhase("swap", partner);
-    const auto [first, second] = splitRegion(region, round % 2);
+    const auto [first, second] = splitRegion(region, cutAxis(round));
     const bool keepFirst = (me & stride) == 0;
     const Rect keep = keepFirst ? first : second;
     const Rect give = keepFirst ? second : first;

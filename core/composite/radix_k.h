@@ -18,7 +18,8 @@ class RadixK : public Strategy {
   TreeShape treeShape(int nodes) const override;
   //! The group size of each round for `nodes` nodes: options.radices if given (their product must
   //! be `nodes`, each at least 2; else kdswap::Error naming a valid factorisation), otherwise the
-  //! prime factors of `nodes` in increasing order (12 -> 2, 2, 3; 13 -> 13; 1 -> none).
+  //! prime factors of `nodes`, smallest first, multiplied into rounds of at most 8 (8 -> 8;
+  //! 12 -> 4, 3; 64 -> 8, 8; 13 -> 13; 1 -> none).
   std::vector<int> radices(int nodes) const;
 
  private:

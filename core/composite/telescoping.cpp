@@ -62,7 +62,7 @@ Rect halfOf(const Rect& region, int axis, bool second) {
 //! The piece of `frame` a node with index `local` in its group owns after `rounds` swap rounds.
 Rect pieceAfter(const Rect& frame, int local, int rounds) {
   Rect region = frame;
-  for (int round = 0; round < rounds; ++round) region = halfOf(region, round % 2, (local >> round) & 1);
+  for (int round = 0; round < rounds; ++round) region = halfOf(region, cutAxis(round), (local >> round) & 1);
   return region;
 }
 
@@ -109,7 +109,7 @@ Tile Telescoping::compose(Image partial, const Rect& frame, const VisibilityOrde
     const int partner = group.first + (local ^ (1 << round));
     phases.beginPhase("swap", partner);
     const bool second = (local >> round) & 1;
-    const Rect keep = halfOf(region, round % 2, second), give = halfOf(region, round % 2, !second);
+    const Rect keep = halfOf(region, cutAxis(round), second), give = halfOf(region, cutAxis(round), !second);
     // As in binary swap: the given half is lent, the partner's lands on the kept one in place,
     // and pixels outside `region` are stale from here on.
     comm.send(partner, kSwapTag + round, image.lend(give, options_.sparse));

@@ -72,10 +72,14 @@ void WorkingImage::composeLayers(const Rect& target, const std::vector<ImageView
   // Sparse or missing own pixels: build the result in a new buffer, accumulating front to back.
   Rect covered;
   for (const ImageView& layer : layers) covered = covered.unite(layer.rect.intersect(target));
-  Image result(covered);
+  // When the front layer covers it all, start from a copy of it (one write instead of clearing
+  // the new buffer and blending onto transparent).
+  const bool startFromFront = !layers.empty() && layers[0].rect.intersect(target) == covered;
+  Image result = startFromFront ? Image(layers[0].within(target)) : Image(covered);
   for (int y0 = covered.y; y0 < covered.bottom(); y0 += kRowsPerBlock) {
     const Rect block{covered.x, y0, covered.w, std::min(kRowsPerBlock, covered.bottom() - y0)};
-    for (const ImageView& layer : layers) pixels += compositeInto(result, layer.within(block), false);
+    for (std::size_t i = startFromFront ? 1 : 0; i < layers.size(); ++i)
+      pixels += compositeInto(result, layers[i].within(block), false);
   }
   *this = WorkingImage(std::move(result));
 }
