@@ -232,7 +232,7 @@ std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeF
                 "  over (compositeInto)  %8.3f ms  %9.1f Mpixels/s\n"
                 "  memcpy, same bytes    %8.3f ms  %9.1f Mpixels/s\n"
                 "  over / copy           %8.2f x   (over reads two images and writes one; copy reads one)\n\n",
-                over.width, over.height, o.repeats, over.overSeconds * 1e3, over.overPixelsPerSecond() * 1e-6,
+                over.width, over.height, o.compositingRepeats, over.overSeconds * 1e3, over.overPixelsPerSecond() * 1e-6,
                 over.copySeconds * 1e3, over.copyPixelsPerSecond() * 1e-6,
                 over.copySeconds > 0 ? over.overSeconds / over.copySeconds : 0.0);
   out += buf;
@@ -242,7 +242,7 @@ std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeF
                 "  whole exchange, wall       %8.3f ms   (all %d nodes on this machine's cores)\n"
                 "  memcpy of one image        %8.3f ms\n"
                 "  composite max / copy       %8.2f x\n",
-                swap.nodes, swap.width, swap.height, o.repeats, swap.compositeMaxSeconds * 1e3, swap.wallSeconds * 1e3,
+                swap.nodes, swap.width, swap.height, o.compositingRepeats, swap.compositeMaxSeconds * 1e3, swap.wallSeconds * 1e3,
                 swap.nodes, swap.copySeconds * 1e3,
                 swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0);
   out += buf;

@@ -37,6 +37,9 @@ struct MicroOptions {
   int volumeSize = 128;  //!< the procedural volume's side, voxels
   int imageSize = 256;   //!< ray-casting image side
   int repeats = 5;
+  //! Compositing runs take milliseconds and this machine's memory bandwidth varies from run to
+  //! run (shared host), so they are repeated more for a stable median.
+  int compositingRepeats = 21;
 };
 
 std::vector<RayCastFigure> measureRayCasting(const MicroOptions& options);

@@ -116,13 +116,14 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   if (stopped()) return out;
 
   say("binary-swap alone, 1024x1024, P=8 ...");
-  const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, std::max(3, o.frames));
+  const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, MicroOptions{}.compositingRepeats);
   out.push_back({"binary-swap 1024^2, P=8: composite max over nodes <= 2 x copy", "kdswap bench --micro",
                  swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0, 2.0, "x", false, true,
                  "copy " + ms(swap.copySeconds) + " (one 16 MiB image)"});
-  out.push_back({"binary-swap 1024^2, P=8: composite max over nodes <= 16 ms", "kdswap bench --micro",
-                 swap.compositeMaxSeconds * 1e3, 16.0, "ms", false, true,
-                 "whole exchange on this machine: " + ms(swap.wallSeconds) + " wall"});
+  // miniGraphics' 32 ms is the wall time of 8 ranks sharing the 2 cores: compare wall with wall.
+  out.push_back({"binary-swap 1024^2, P=8: whole exchange, wall <= 16 ms (half of miniGraphics)",
+                 "kdswap bench --micro", swap.wallSeconds * 1e3, 16.0, "ms", false, true,
+                 "max over nodes " + ms(swap.compositeMaxSeconds)});
   if (stopped()) return out;
 
   say("default scene, 512x512, P=8 ...");

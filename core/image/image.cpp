@@ -5,11 +5,39 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/image/pixel_pool.h"
 #include "core/util/check.h"
 
 namespace kdswap {
 
-Image::Image(const Rect& rect) : rect_(rect.empty() ? Rect{} : rect), values_(std::size_t(rect_.area()) * 4, 0.0f) {}
+Image::Image(const Rect& rect) : rect_(rect.empty() ? Rect{} : rect) {
+  values_ = pixel_pool::take(std::size_t(rect_.area()) * 4);
+  values_.resize(std::size_t(rect_.area()) * 4, 0.0f);
+}
+
+Image::~Image() { pixel_pool::give(values_); }
+
+Image::Image(const Image& other) : rect_(other.rect_) {
+  values_ = pixel_pool::take(other.values_.size());
+  values_.assign(other.values_.begin(), other.values_.end());
+}
+
+Image& Image::operator=(const Image& other) {
+  if (this != &other) {
+    rect_ = other.rect_;
+    values_.assign(other.values_.begin(), other.values_.end());
+  }
+  return *this;
+}
+
+Image& Image::operator=(Image&& other) noexcept {
+  if (this != &other) {
+    pixel_pool::give(values_);
+    rect_ = other.rect_;
+    values_ = std::move(other.values_);
+  }
+  return *this;
+}
 
 Image::Image(const Rect& rect, std::vector<float> values)
     : rect_(rect.empty() ? Rect{} : rect), values_(std::move(values)) {
@@ -19,7 +47,7 @@ Image::Image(const Rect& rect, std::vector<float> values)
 Image::Image(const ImageView& view) : rect_(view.rect.empty() ? Rect{} : view.rect) {
   // Rows are appended, not copied over zeros: one pass over the pixels (compositing moves a lot
   // of them, so this matters).
-  values_.reserve(std::size_t(rect_.area()) * 4);
+  values_ = pixel_pool::take(std::size_t(rect_.area()) * 4);
   for (int y = rect_.y; y < rect_.bottom(); ++y) {
     const float* row = &view.row(y)->r;
     values_.insert(values_.end(), row, row + std::size_t(rect_.w) * 4);

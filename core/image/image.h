@@ -19,6 +19,12 @@ class Image {
   Image(const Rect& rect, std::vector<float> values);
   //! A copy of the pixels `view` sees.
   explicit Image(const ImageView& view);
+  // Storage comes from and goes back to the pixel pool (pixel_pool.h).
+  ~Image();
+  Image(const Image& other);
+  Image(Image&&) noexcept = default;
+  Image& operator=(const Image& other);
+  Image& operator=(Image&& other) noexcept;
 
   const Rect& rect() const { return rect_; }
   bool empty() const { return rect_.empty(); }
