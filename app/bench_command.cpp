@@ -174,16 +174,16 @@ void run(const BenchOptions& o) {
     log("ray casting on one core ...");
     const auto rays = measureRayCasting(m);
     log("over vs memcpy, 1024x1024 ...");
-    const CompositeFigure over = measureOver(1024, 1024, m.repeats);
+    const CompositeFigure over = measureOver(1024, 1024, m.compositingRepeats);
     log("binary-swap alone, 1024x1024, P=8 ...");
-    const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, m.repeats);
+    const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, m.compositingRepeats);
     std::printf("%s", formatMicro(rays, over, swap, m).c_str());
     std::vector<BinarySwapFigure> strategies;
     for (const CompositingReference& r : compositingReferences()) {
       if (gStop.load()) break;
       log(r.strategy + " alone, 1024x1024, P=" + std::to_string(r.nodes) + " ...");
       strategies.push_back(r.strategy == "binary-swap" && r.nodes == 8 ? swap
-                                                                       : measureCompositing(r.strategy, r.nodes, 1024, 1024, m.repeats));
+                                                                       : measureCompositing(r.strategy, r.nodes, 1024, 1024, m.compositingRepeats));
     }
     std::printf("\n%s", formatCompositingTable(strategies).c_str());
   } else if (o.paper) {

@@ -83,7 +83,7 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
   cmd->add_flag("--sparse", o.sparse, "Send only the bounding rectangle of non-empty pixels");
   cmd->add_option("--radices", o.radices,
-                  "radix-k: group size of each round, e.g. 4,2 (product = --nodes; default: prime factors of P)");
+                  "radix-k: group size of each round, e.g. 4,2 (product = --nodes; default: prime factors of P in rounds of at most 8, e.g. 64 -> 8,8)");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = every core)")->capture_default_str();
   cmd->add_option("--balance", o.balance,
                   "Plane placement: space (halve space, as the paper) or cost (balance the work estimated "
