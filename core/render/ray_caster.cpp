@@ -99,14 +99,33 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   const float* specular = specular_.data();
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
-  // One sample at p (inside the brick, in a cell that may be visible); true when the ray is done.
-  auto takeSample = [&](const glm::vec3& p) {
+  std::size_t lastJumpedCell = std::size_t(-1);
+  for (long k = kBegin; k <= kEnd; ++k) {
+    const float t = (float(k) + phase) * step;
+    const glm::vec3 p = o + d * t;
+    // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
+    if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;
+    const glm::ivec3 c = (glm::ivec3(int(p.x), int(p.y), int(p.z)) >> Brick::kCellShift) - cellLo;
+    const std::size_t cellIndex = (std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x;
+    if (cellEmpty_[cellIndex]) {
+      if (cellIndex == lastJumpedCell) continue;  // landed just short of the exit: step on
+      lastJumpedCell = cellIndex;
+      // Jump to just before the ray leaves this empty cell; samples there are all invisible.
+      const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo) << Brick::kCellShift), lo);
+      const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + 1) << Brick::kCellShift), hi);
+      float tExit = std::numeric_limits<float>::max();
+      for (int a = 0; a < 3; ++a)
+        if (d[a] != 0.0f) tExit = std::min(tExit, ((d[a] > 0.0f ? cHi[a] : cLo[a]) - o[a]) / d[a]);
+      const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
+      if (resume > k) k = resume;
+      continue;
+    }
     ++samples;
     const TrilinearCell cell(brick_, p);
     const TrilinearCell::Lanes both = cell.interpolate();
     const float value = both[0];
     const glm::vec4 tf = table_.lookup(value * scale_ + bias_);
-    if (tf.a <= 0.0f) return false;
+    if (tf.a <= 0.0f) continue;
     glm::vec3 colour(tf.r, tf.g, tf.b);
     if (shading) {
       const glm::vec3 grad(both[1], both[2], both[3]);
@@ -123,50 +142,7 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
     g += w * colour.g;
     b += w * colour.b;
     alpha += w;
-    return alpha >= stopAt;  // early ray termination
-  };
-  // Last t at which p = o + d * t is still inside [cLo, cHi) beyond any rounding of p (the clip
-  // margin again): samples up to it need no per-sample test.
-  auto lastSafeT = [&](const glm::vec3& cLo, const glm::vec3& cHi) {
-    float tSafe = std::numeric_limits<float>::max();
-    for (int a = 0; a < 3; ++a)
-      if (d[a] != 0.0f) tSafe = std::min(tSafe, ((d[a] > 0.0f ? cHi[a] - margin : cLo[a] + margin) - o[a]) / d[a]);
-    return tSafe;
-  };
-  std::size_t lastJumpedCell = std::size_t(-1);
-  for (long k = kBegin; k <= kEnd; ++k) {
-    const float t = (float(k) + phase) * step;
-    const glm::vec3 p = o + d * t;
-    // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
-    if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;
-    const glm::ivec3 c = (glm::ivec3(int(p.x), int(p.y), int(p.z)) >> Brick::kCellShift) - cellLo;
-    const std::size_t cellIndex = (std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x;
-    const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo) << Brick::kCellShift), lo);
-    const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + 1) << Brick::kCellShift), hi);
-    if (cellEmpty_[cellIndex]) {
-      if (cellIndex == lastJumpedCell) continue;  // landed just short of the exit: step on
-      lastJumpedCell = cellIndex;
-      // Jump to just before the ray leaves this empty cell; samples there are all invisible.
-      float tExit = std::numeric_limits<float>::max();
-      for (int a = 0; a < 3; ++a)
-        if (d[a] != 0.0f) tExit = std::min(tExit, ((d[a] > 0.0f ? cHi[a] : cLo[a]) - o[a]) / d[a]);
-      const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
-      if (resume > k) k = resume;
-      continue;
-    }
-    // A cell that may be visible: sample on through it. p only moves away from the side the ray
-    // entered by (it is monotonic in k per axis), so staying before lastSafeT keeps it inside;
-    // the samples near the exit go back through the tests above.
-    if (takeSample(p)) break;
-    const float tSafe = lastSafeT(cLo, cHi);
-    bool done = false;
-    while (k < kEnd) {
-      const float tn = (float(k + 1) + phase) * step;
-      if (!(tn <= tSafe)) break;
-      ++k;
-      if ((done = takeSample(o + d * tn))) break;
-    }
-    if (done) break;
+    if (alpha >= stopAt) break;  // early ray termination
   }
   counters.samples += samples;
   return Rgba{r, g, b, alpha};
