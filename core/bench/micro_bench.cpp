@@ -179,6 +179,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
     std::vector<Image> partial = source;  // copied outside the timed region
     std::vector<Tile> finished(static_cast<std::size_t>(nodes));  // and released outside it (with the buffers they share)
     std::vector<double> compute(std::size_t(nodes), 0.0);
+    std::vector<std::uint64_t> sent(std::size_t(nodes), 0);
     const double t0 = nowSeconds();
     arena.execute([&] {
       tbb::task_group group;
@@ -193,6 +194,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
             network.abort("node " + std::to_string(r) + ": " + e.what());
           }
           compute[std::size_t(r)] = nowSeconds() - start - comm.counters().waitSeconds;
+          sent[std::size_t(r)] = comm.counters().bytesSent;
         });
       group.wait();
     });
@@ -202,6 +204,8 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
     double m = 0;
     for (double c : compute) m = std::max(m, c);
     maxima.push_back(m);
+    f.bytesSent = 0;
+    for (std::uint64_t b : sent) f.bytesSent += b;
     walls.push_back(wall);
   }
   f.compositeMaxSeconds = median(maxima);
@@ -241,10 +245,14 @@ std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeF
                 "  composite, max over nodes  %8.3f ms   (compose time minus time suspended waiting)\n"
                 "  whole exchange, wall       %8.3f ms   (all %d nodes on this machine's cores)\n"
                 "  memcpy of one image        %8.3f ms\n"
-                "  composite max / copy       %8.2f x\n",
+                "  composite max / copy       %8.2f x\n"
+                "  bytes sent, all nodes      %8.1f MiB   (copying them: %.3f ms at the memcpy speed)\n"
+                "  wall / copy of bytes sent  %8.2f x\n",
                 swap.nodes, swap.width, swap.height, o.compositingRepeats, swap.compositeMaxSeconds * 1e3, swap.wallSeconds * 1e3,
                 swap.nodes, swap.copySeconds * 1e3,
-                swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0);
+                swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0,
+                double(swap.bytesSent) / (1 << 20), swap.copySentSeconds() * 1e3,
+                swap.copySentSeconds() > 0 ? swap.wallSeconds / swap.copySentSeconds() : 0.0);
   out += buf;
   return out;
 }

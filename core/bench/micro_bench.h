@@ -3,6 +3,7 @@
 // binary-swap compositing alone (synthetic full-frame partial images over an InprocNetwork).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,12 @@ struct BinarySwapFigure {
   double compositeMaxSeconds = 0;  //!< max over nodes of compose time minus time suspended, median
   double wallSeconds = 0;          //!< whole exchange on this machine's cores, median
   double copySeconds = 0;          //!< memcpy of one full image, median
+  std::uint64_t bytesSent = 0;     //!< by all nodes in one exchange
+  //! The time to copy as many bytes as the exchange sends, at the measured memcpy speed.
+  double copySentSeconds() const {
+    const double imageBytes = double(width) * height * 16.0;
+    return imageBytes > 0 ? copySeconds * double(bytesSent) / imageBytes : 0.0;
+  }
 };
 
 struct MicroOptions {

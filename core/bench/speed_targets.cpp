@@ -53,6 +53,12 @@ std::string ms(double seconds) {
   return buf;
 }
 
+std::string fixed(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", value);
+  return buf;
+}
+
 }  // namespace
 
 std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::function<void(const std::string&)>& log,
@@ -117,9 +123,13 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
 
   say("binary-swap alone, 1024x1024, P=8 ...");
   const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, MicroOptions{}.compositingRepeats);
-  out.push_back({"binary-swap 1024^2, P=8: composite max over nodes <= 2 x copy", "kdswap bench --micro",
-                 swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0, 2.0, "x", false, true,
-                 "copy " + ms(swap.copySeconds) + " (one 16 MiB image)"});
+  // "At most 2 x the time of copying the same number of bytes": the whole exchange (wall) against
+  // a memcpy of as many bytes as all nodes send, timed in the same run.
+  out.push_back({"binary-swap 1024^2, P=8: whole exchange <= 2 x copying the bytes it sends", "kdswap bench --micro",
+                 swap.copySentSeconds() > 0 ? swap.wallSeconds / swap.copySentSeconds() : 0.0, 2.0, "x", false, true,
+                 "copying " + std::to_string(swap.bytesSent >> 20) + " MiB: " + ms(swap.copySentSeconds()) +
+                     "; one node's composite time / copy of one image: " +
+                     fixed(swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0) + " x"});
   // miniGraphics' 32 ms is the wall time of 8 ranks sharing the 2 cores: compare wall with wall.
   out.push_back({"binary-swap 1024^2, P=8: whole exchange, wall <= 16 ms (half of miniGraphics)",
                  "kdswap bench --micro", swap.wallSeconds * 1e3, 16.0, "ms", false, true,
