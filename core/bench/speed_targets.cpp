@@ -22,6 +22,9 @@ struct CellSpec {
   int nodes = 64, size = 512;
   float step = 1.0f;
   std::string strategy = "binary-swap";
+  //! The VTK comparison's transfer function (grey ramp, opacity 0 up to 10% rising to 0.8);
+  //! empty: the data set's own preset (the default scene).
+  std::string transfer = "grayscale";
 };
 
 BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, const std::atomic<bool>* stop,
@@ -34,7 +37,8 @@ BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, 
   o.base.settings.stepVoxels = spec.step;
   o.base.settings.shading = true;
   const VolumeInfo& info = source.info();
-  o.base.transfer = loadTransferFunction(info.preset.empty() ? "grayscale" : info.preset);
+  o.base.transfer = loadTransferFunction(!spec.transfer.empty() ? spec.transfer
+                                                                 : (info.preset.empty() ? "grayscale" : info.preset));
   const BenchResult r = runBenchGrid(source, o, {}, stop);
   interrupted = r.interrupted || r.cells.empty();
   return r.cells.empty() ? BenchCell{} : r.cells.front();
@@ -42,8 +46,9 @@ BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, 
 
 std::string gridCommand(const std::string& data, const CellSpec& s, int frames, const char* extra = "") {
   char buf[512];
-  std::snprintf(buf, sizeof buf, "kdswap bench %s --sizes %d --nodes %d --step %g --shading on --frames %d%s",
-                data.c_str(), s.size, s.nodes, double(s.step), frames, extra);
+  std::snprintf(buf, sizeof buf, "kdswap bench %s%s%s --sizes %d --nodes %d --step %g --shading on --frames %d%s",
+                data.c_str(), s.transfer.empty() ? "" : " --tf ", s.transfer.c_str(), s.size, s.nodes, double(s.step),
+                frames, extra);
   return buf;
 }
 
@@ -89,7 +94,7 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   p1.nodes = 1;
   const BenchCell b = measure(phantom, p1, o.frames, stop, interrupted);
   out.push_back({"P=64 wall <= 1.15 x P=1 wall (phantom 256^3 uint8, 512x512, step 1)",
-                 "kdswap bench " + phantomData + " --sizes 512 --nodes 1,64 --step 1 --frames " +
+                 "kdswap bench " + phantomData + " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --frames " +
                      std::to_string(o.frames),
                  b.wallSeconds > 0 ? a.wallSeconds / b.wallSeconds : 0.0, 1.15, "x", false, !interrupted,
                  "P=1 wall " + ms(b.wallSeconds)});
@@ -141,7 +146,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     auto scene = openDataset(kDefaultDataset);
     CellSpec d;
     d.nodes = 8;
-    d.step = 0.5f;  // the default scene's settings (render's defaults)
+    d.step = 0.5f;       // the default scene's settings (render's defaults)
+    d.transfer.clear();  // and its own preset
     const BenchCell c = measure(*scene, d, o.frames, stop, interrupted);
     out.push_back({"default scene (phantom:128), 512x512, P=8: frames per second",
                    "kdswap bench --sizes 512 --nodes 8 --frames " + std::to_string(o.frames),

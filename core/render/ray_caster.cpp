@@ -26,43 +26,26 @@ constexpr int kSpecularEntries = 256;
 }  // namespace
 
 RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange)
-    : brick_(brick), table_(table), settings_(settings) {
-  const float span = valueRange.y - valueRange.x;
-  scale_ = span > 0.0f ? 1.0f / span : 0.0f;
-  bias_ = span > 0.0f ? -valueRange.x / span : 0.0f;
+    : brick_(brick),
+      table_(table),
+      settings_(settings),
+      scale_(valueRange.y > valueRange.x ? 1.0f / (valueRange.y - valueRange.x) : 0.0f),
+      bias_(valueRange.y > valueRange.x ? -valueRange.x / (valueRange.y - valueRange.x) : 0.0f),
+      emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace) {
   const glm::vec3 sp = brick.spacing();
   stepWorld_ = settings.stepVoxels * std::min({sp.x, sp.y, sp.z});
-  const std::vector<glm::vec2>& ranges = brick.cellRanges();
-  cellEmpty_.resize(ranges.size());
-  for (std::size_t i = 0; i < ranges.size(); ++i)
-    cellEmpty_[i] = ranges[i].x <= ranges[i].y && !table.anyVisible(ranges[i].x * scale_ + bias_, ranges[i].y * scale_ + bias_);
-  // Tight box around the cells that can be visible: outside it every sample is invisible.
-  const glm::ivec3 n = brick.cellCount(), c0 = brick.cellLo();
-  glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
-  for (int z = 0; z < n.z; ++z)
-    for (int y = 0; y < n.y; ++y)
-      for (int x = 0; x < n.x; ++x)
-        if (!cellEmpty_[(std::size_t(z) * n.y + y) * n.x + x]) {
-          lo = glm::min(lo, glm::ivec3(x, y, z));
-          hi = glm::max(hi, glm::ivec3(x, y, z));
-        }
-  anyVisible_ = !brick.empty() && lo.x <= hi.x;
-  if (anyVisible_) {
-    visibleLo_ = glm::max(glm::vec3((lo + c0) << Brick::kCellShift), glm::vec3(brick.owned().lo));
-    visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << Brick::kCellShift), glm::vec3(brick.owned().hi));
-  }
   specular_.resize(kSpecularEntries + 1);
   for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
 }
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
-  if (!anyVisible_) return Rgba{};
+  if (!emptySpace_.anyVisible()) return Rgba{};
   // Ray in voxel coordinates: every brick computes these identically for the same pixel.
   const glm::vec3 spacing = brick_.spacing();
   const glm::vec3 o = ray.origin / spacing;
   const glm::vec3 d = ray.direction / spacing;
   const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
-  const glm::vec3 clipLo = visibleLo_, clipHi = visibleHi_;
+  const glm::vec3 clipLo = emptySpace_.visibleLo(), clipHi = emptySpace_.visibleHi();
 
   // Clip to the visible part of the owned box, grown by more than the rounding error of p = o + d * t, to bound the
   // lattice indices; membership is then decided per sample on the computed p. The margin matters
@@ -95,7 +78,8 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   const float ka = settings_.ambient, kd = settings_.diffuse, ks = settings_.specular;
   const float stopAt = settings_.earlyTermination;
 
-  const glm::ivec3 cellLo = brick_.cellLo(), cellCount = brick_.cellCount();
+  const glm::ivec3 cellLo = brick_.cellLo();
+  const glm::vec3 inverseD = 1.0f / d;  // used only on axes with d != 0
   const float* specular = specular_.data();
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
@@ -106,16 +90,17 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
     // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
     if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;
     const glm::ivec3 c = (glm::ivec3(int(p.x), int(p.y), int(p.z)) >> Brick::kCellShift) - cellLo;
-    const std::size_t cellIndex = (std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x;
-    if (cellEmpty_[cellIndex]) {
+    const std::size_t cellIndex = emptySpace_.cellIndex(c);
+    if (const int reach = emptySpace_.reach(cellIndex)) {
       if (cellIndex == lastJumpedCell) continue;  // landed just short of the exit: step on
       lastJumpedCell = cellIndex;
-      // Jump to just before the ray leaves this empty cell; samples there are all invisible.
-      const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo) << Brick::kCellShift), lo);
-      const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + 1) << Brick::kCellShift), hi);
+      // Jump to just before the ray leaves the invisible cube of cells around this one; samples
+      // there are all invisible (a cube is convex: the ray stays inside it until it exits).
+      const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo - (reach - 1)) << Brick::kCellShift), lo);
+      const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + reach) << Brick::kCellShift), hi);
       float tExit = std::numeric_limits<float>::max();
       for (int a = 0; a < 3; ++a)
-        if (d[a] != 0.0f) tExit = std::min(tExit, ((d[a] > 0.0f ? cHi[a] : cLo[a]) - o[a]) / d[a]);
+        if (d[a] != 0.0f) tExit = std::min(tExit, ((d[a] > 0.0f ? cHi[a] : cLo[a]) - o[a]) * inverseD[a]);
       const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
       if (resume > k) k = resume;
       continue;
@@ -149,9 +134,9 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
 }
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
-  if (!anyVisible_) return Image{};
+  if (!emptySpace_.anyVisible()) return Image{};
   const glm::vec3 spacing = brick_.spacing();
-  const Rect rect = camera.projectBox(visibleLo_ * spacing, visibleHi_ * spacing);
+  const Rect rect = camera.projectBox(emptySpace_.visibleLo() * spacing, emptySpace_.visibleHi() * spacing);
   Image image(rect);
   if (rect.empty()) return image;
   tbb::combinable<RenderCounters> perThread;

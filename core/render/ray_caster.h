@@ -10,6 +10,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/camera/camera.h"
+#include "core/render/empty_space_map.h"
 #include "core/image/image.h"
 #include "core/render/render_settings.h"
 #include "core/transfer/transfer_function.h"
@@ -41,14 +42,8 @@ class RayCaster {
   const RenderSettings& settings_;
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
   float stepWorld_;
-  //! Per macro cell of the brick: 1 when no sample there can be visible under this transfer
-  //! function (empty-space skipping; exact, since such samples add nothing).
-  std::vector<unsigned char> cellEmpty_;
+  EmptySpaceMap emptySpace_;     //!< invisible macro cells under this transfer function
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
-  //! Bounds of the cells that can be visible, within the owned box (voxel coordinates); empty
-  //! when nothing in the brick is visible. Rays and the screen rectangle are clipped to it.
-  glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
-  bool anyVisible_ = false;
 };
 
 }  // namespace kdswap

@@ -12,6 +12,7 @@ struct RenderSettings {
   float earlyTermination = 0.99f;   //!< stop a ray once its opacity reaches this; 1 disables
   bool shading = true;              //!< Phong shading from the precomputed gradients
   bool jitter = true;               //!< per-ray lattice phase (Ray::offset) against ring artefacts
+  bool skipEmptySpace = true;       //!< jump over invisible regions (exact; off only to test that it is)
   float ambient = 0.3f, diffuse = 0.7f, specular = 0.3f, shininess = 24.0f;
   std::optional<glm::vec2> valueRange;  //!< scalar range mapped to [0, 1]; the volume's if unset
 };

@@ -1,0 +1,48 @@
+// EmptySpaceMap: which macro cells of a brick can hold a visible sample under one transfer function,
+// and, for every other cell, how far the invisible region around it reaches, so a ray crosses a
+// whole empty region in one jump instead of one jump per 8-voxel cell. Skipping is exact: only
+// samples whose opacity is certainly 0 are left out, so images equal those without skipping.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/transfer/transfer_function.h"
+#include "core/volume/brick.h"
+
+namespace kdswap {
+
+class EmptySpaceMap {
+ public:
+  //! Normalised scalar = value * scale + bias. With `enabled` false nothing is skipped (the
+  //! reference for tests: every owned sample is taken).
+  EmptySpaceMap(const Brick& brick, const TransferTable& table, float scale, float bias, bool enabled = true);
+
+  //! 0 when a sample in the cell can be visible. Otherwise n >= 1: every cell within n - 1 of this
+  //! one along each axis (a cube of 2n - 1 cells) is invisible, as far as it lies in the brick.
+  std::uint8_t reach(std::size_t cellIndex) const { return reach_[cellIndex]; }
+  std::size_t cellIndex(const glm::ivec3& cell) const {  //!< cell relative to the brick's first
+    return (std::size_t(cell.z) * cellCount_.y + cell.y) * cellCount_.x + cell.x;
+  }
+
+  bool anyVisible() const { return anyVisible_; }
+  //! Bounds (voxel coordinates, within the owned box) of the cells that can be visible; rays and
+  //! the screen rectangle are clipped to them. The owned box when skipping is off.
+  const glm::vec3& visibleLo() const { return visibleLo_; }
+  const glm::vec3& visibleHi() const { return visibleHi_; }
+
+  //! Chessboard distance, capped at 255, from each cell to the nearest cell marked 0 (x fastest).
+  //! Cells marked 0 stay 0; with no 0 at all every cell gets 255. Exposed for its test.
+  static std::vector<std::uint8_t> chessboardDistance(std::vector<std::uint8_t> visibleIsZero, const glm::ivec3& count);
+
+ private:
+  glm::ivec3 cellCount_{0};
+  std::vector<std::uint8_t> reach_;
+  glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
+  bool anyVisible_ = false;
+};
+
+}  // namespace kdswap

@@ -1,0 +1,96 @@
+// Empty-space skipping: the cell distance map is the true chessboard distance, and rays that jump
+// over invisible regions give exactly the image of rays that sample every lattice point.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <random>
+
+#include "core/render/empty_space_map.h"
+#include "core/render/reference_render.h"
+#include "core/transfer/presets.h"
+#include "core/volume/datasets/dataset.h"
+#include "test_support.h"
+
+using namespace kdswap;
+
+namespace {
+
+std::vector<std::uint8_t> bruteForce(const std::vector<std::uint8_t>& marks, const glm::ivec3& n) {
+  std::vector<std::uint8_t> d(marks.size(), 255);
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) {
+        int best = 255;
+        for (int qz = 0; qz < n.z; ++qz)
+          for (int qy = 0; qy < n.y; ++qy)
+            for (int qx = 0; qx < n.x; ++qx)
+              if (marks[(std::size_t(qz) * n.y + qy) * n.x + qx] == 0)
+                best = std::min(best, std::max({std::abs(qx - x), std::abs(qy - y), std::abs(qz - z)}));
+        d[(std::size_t(z) * n.y + y) * n.x + x] = std::uint8_t(best);
+      }
+  return d;
+}
+
+Brick brickOf(const VolumeSource& source, const VoxelBox& owned) {
+  const VoxelBox stored = Brick::storedBoxFor(owned, source.info().dims);
+  std::vector<float> raw(std::size_t(stored.count()));
+  source.read(stored, raw.data());
+  return Brick(owned, source.info().dims, source.info().spacing, std::move(raw));
+}
+
+}  // namespace
+
+TEST_CASE("the cell distance map is the chessboard distance to the nearest visible cell") {
+  std::mt19937 rng(11);
+  const glm::ivec3 shapes[] = {{1, 1, 1}, {5, 1, 1}, {1, 7, 3}, {6, 5, 4}, {9, 8, 7}, {12, 3, 10}};
+  for (const glm::ivec3& n : shapes)
+    for (const double density : {0.0, 0.02, 0.1, 0.5, 1.0}) {
+      std::bernoulli_distribution visible(density);
+      std::vector<std::uint8_t> marks(std::size_t(n.x) * n.y * n.z);
+      for (std::uint8_t& m : marks) m = visible(rng) ? 0 : 1;
+      CAPTURE(n.x);
+      CAPTURE(n.y);
+      CAPTURE(n.z);
+      CAPTURE(density);
+      CHECK(EmptySpaceMap::chessboardDistance(marks, n) == bruteForce(marks, n));
+    }
+}
+
+TEST_CASE("skipping empty space changes no pixel, only the number of samples taken") {
+  struct Case {
+    std::string data, transfer;
+  };
+  // Turbulence is dense under its own preset: a threshold at 70% leaves it gaps to skip.
+  const Case cases[] = {{"phantom:40", "grayscale"}, {"phantom:40", "phantom"}, {"vessels:40", "vessels"},
+                        {"turbulence:32", "threshold"}};
+  const TransferFunction threshold({{0.0f, {0.2f, 0.3f, 0.9f}}, {1.0f, {1.0f, 0.9f, 0.6f}}},
+                                   {{0.0f, 0.0f}, {0.7f, 0.0f}, {1.0f, 0.6f}}, "threshold");
+  for (const Case& c : cases) {
+    auto volume = openDataset(c.data);
+    const glm::ivec3 dims = volume->info().dims;
+    const TransferFunction tf = c.transfer == "threshold" ? threshold : loadTransferFunction(c.transfer);
+    const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
+    // The whole volume and a brick cut out of it (skipping works on the brick's own cells).
+    const Brick bricks[] = {wholeVolumeBrick(*volume),
+                            brickOf(*volume, VoxelBox{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)})};
+    for (const Brick& brick : bricks)
+      for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f}) {
+        View view;
+        view.azimuthDeg = azimuth;
+        view.elevationDeg = azimuth > 100.0f ? -40.0f : 20.0f;
+        view.projection = azimuth == 90.0f ? Projection::Orthographic : Projection::Perspective;
+        RenderSettings skipping, sampling;
+        skipping.stepVoxels = sampling.stepVoxels = azimuth == 37.0f ? 1.0f : 0.5f;
+        sampling.skipEmptySpace = false;
+        const ReferenceResult a = renderReference(brick, view, 72, 64, tf, skipping, range);
+        const ReferenceResult b = renderReference(brick, view, 72, 64, tf, sampling, range);
+        CAPTURE(c.data);
+        CAPTURE(c.transfer);
+        CAPTURE(azimuth);
+        CAPTURE(brick.owned().lo.x);
+        CHECK(maxAbsDifference(a.image, b.image, b.image.rect()) == 0.0f);
+        CHECK(a.counters.samples < b.counters.samples);
+      }
+  }
+}
