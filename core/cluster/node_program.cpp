@@ -114,7 +114,7 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
     if (it == node.pieces.end())
       throw Error("node " + std::to_string(rank) + ": was given brick " + std::to_string(brick) + " but does not hold it");
     RenderCounters counters;
-    const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange);
+    const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange, plan.occlusion);
     rendered.emplace_back(brick, caster.render(plan.camera, counters));
     report.renderSeconds += counters.seconds;
     report.rays += counters.rays;
@@ -166,7 +166,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     partial = renderPieces(node, comm, plan, report, observer);
   } else {
     RenderCounters counters;
-    const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange);
+    const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion);
     partial = caster.render(plan.camera, counters);
     report.renderSeconds = counters.seconds;
     report.rays = counters.rays;

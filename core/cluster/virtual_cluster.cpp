@@ -5,6 +5,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <oneapi/tbb/task_group.h>
@@ -127,6 +128,12 @@ VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions&
     for (int b = 0; b < layout_.bricks(); ++b) brickCost_.push_back((cost_ ? *cost_ : uniform).cost(layout_.box(b)));
     held_.assign(std::size_t(options.nodes), {});
   }
+  std::vector<const Brick*> bricks;
+  for (const NodeState& node : nodes_) {
+    bricks.push_back(&node.brick);
+    for (const auto& [id, piece] : node.pieces) bricks.push_back(&piece);
+  }
+  cellRanges_ = CellRangeGrid::fromBricks(info_.dims, bricks);
   distributeSeconds_ = nowSeconds() - start;
 }
 
@@ -216,6 +223,14 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
                 ": each side must be between 1 and 16384");
   const double start = nowSeconds();
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
+  std::optional<OcclusionGrid> occlusion;
+  if (request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1) {
+    const glm::vec2 r = plan.valueRange;
+    const float span = r.y - r.x;
+    occlusion.emplace(cellRanges_, plan.table, span > 0.0f ? 1.0f / span : 0.0f, span > 0.0f ? -r.x / span : 0.0f,
+                      request.settings.earlyTermination);
+    plan.occlusion = &*occlusion;
+  }
   BrickSchedule schedule;
   std::vector<std::set<int>> heldBefore;
   if (layout_.perNode() > 1) {

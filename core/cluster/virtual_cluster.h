@@ -121,6 +121,9 @@ class VirtualCluster {
   InprocNetwork network_;
   std::vector<NodeState> nodes_;  //!< nodes_[r] is touched only by node r's task
   double distributeSeconds_ = 0;
+  //! Value range of every macro cell of the whole volume, gathered once from the nodes' bricks:
+  //! the replicated summary occlusion culling reads (1/512 of the voxel count).
+  CellRangeGrid cellRanges_;
   FaultPlan fault_;  //!< armed for the next frame only
 };
 

@@ -25,13 +25,15 @@ constexpr int kSpecularEntries = 256;
 
 }  // namespace
 
-RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange)
+RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
+                     const OcclusionGrid* occlusion)
     : brick_(brick),
       table_(table),
       settings_(settings),
       scale_(valueRange.y > valueRange.x ? 1.0f / (valueRange.y - valueRange.x) : 0.0f),
       bias_(valueRange.y > valueRange.x ? -valueRange.x / (valueRange.y - valueRange.x) : 0.0f),
-      emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace) {
+      emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace),
+      occlusion_(occlusion && occlusion->active() ? occlusion : nullptr) {
   const glm::vec3 sp = brick.spacing();
   stepWorld_ = settings.stepVoxels * std::min({sp.x, sp.y, sp.z});
   specular_.resize(kSpecularEntries + 1);
@@ -84,6 +86,7 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
   std::size_t lastJumpedCell = std::size_t(-1);
+  bool frontChecked = !occlusion_;  // asked at the first sample that may be visible, not per ray
   for (long k = kBegin; k <= kEnd; ++k) {
     const float t = (float(k) + phase) * step;
     const glm::vec3 p = o + d * t;
@@ -104,6 +107,13 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
       const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
       if (resume > k) k = resume;
       continue;
+    }
+    if (!frontChecked) {
+      frontChecked = true;
+      if (occlusion_->occludedBefore(o, d, t, step, phase)) {
+        ++counters.occluded;
+        break;
+      }
     }
     ++samples;
     const TrilinearCell cell(brick_, p);
@@ -157,6 +167,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   perThread.combine_each([&](const RenderCounters& c) {
     counters.rays += c.rays;
     counters.samples += c.samples;
+    counters.occluded += c.occluded;
     counters.seconds += c.seconds;
   });
   return image;

@@ -11,6 +11,7 @@
 
 #include "core/camera/camera.h"
 #include "core/render/empty_space_map.h"
+#include "core/render/occlusion_grid.h"
 #include "core/image/image.h"
 #include "core/render/render_settings.h"
 #include "core/transfer/transfer_function.h"
@@ -21,13 +22,17 @@ namespace kdswap {
 struct RenderCounters {
   std::uint64_t rays = 0;     //!< rays that met the brick
   std::uint64_t samples = 0;  //!< samples taken inside the brick
+  std::uint64_t occluded = 0; //!< rays skipped: opaque matter in front of the brick ends them
   double seconds = 0.0;       //!< work time, summed over tiles (time on one processor)
 };
 
 class RayCaster {
  public:
   //! `valueRange` maps scalars to [0, 1]. The caster keeps references: all must outlive it.
-  RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange);
+  //! With `occlusion`, rays whose samples in front of the brick certainly end the single-node ray
+  //! are skipped (see occlusion_grid.h).
+  RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
+            const OcclusionGrid* occlusion = nullptr);
 
   //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
   //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
@@ -43,6 +48,7 @@ class RayCaster {
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
   float stepWorld_;
   EmptySpaceMap emptySpace_;     //!< invisible macro cells under this transfer function
+  const OcclusionGrid* occlusion_;
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
 };
 

@@ -141,6 +141,25 @@ TransferTable::TransferTable(const TransferFunction& tf, float stepVoxels) : ent
   }
   visibleBefore_.assign(kSize + 1, 0);
   for (int i = 0; i < kSize; ++i) visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].a > 0.0f ? 1 : 0);
+  minAlphaRuns_.emplace_back(kSize);
+  for (int i = 0; i < kSize; ++i) minAlphaRuns_[0][std::size_t(i)] = entries_[std::size_t(i)].a;
+  for (int len = 2; len <= kSize; len *= 2) {
+    const std::vector<float>& half = minAlphaRuns_.back();
+    std::vector<float> run(std::size_t(kSize - len + 1));
+    for (std::size_t i = 0; i < run.size(); ++i) run[i] = std::min(half[i], half[i + std::size_t(len / 2)]);
+    minAlphaRuns_.push_back(std::move(run));
+  }
+}
+
+float TransferTable::minAlpha(float s0, float s1) const {
+  if (entries_.empty() || !(s0 <= s1)) return 0.0f;
+  const float f0 = std::max(s0 * float(kSize - 1), -1.0f), f1 = std::min(s1 * float(kSize - 1), float(kSize));
+  const int i0 = std::clamp(int(std::floor(f0)) - 1, 0, kSize - 1);
+  const int i1 = std::clamp(int(std::ceil(f1)) + 1, 0, kSize - 1);
+  int level = 0;
+  while ((2 << level) <= i1 - i0 + 1) ++level;
+  const std::vector<float>& run = minAlphaRuns_[std::size_t(level)];
+  return std::min(run[std::size_t(i0)], run[std::size_t(i1 - (1 << level) + 1)]);
 }
 
 bool TransferTable::anyVisible(float s0, float s1) const {

@@ -69,6 +69,9 @@ class TransferTable {
   }
   //! Largest corrected opacity over normalised scalars in [s0, s1].
   float maxAlpha(float s0, float s1) const;
+  //! Smallest corrected opacity lookup(s) can give for s in [s0, s1] (conservative by one entry on
+  //! each side; 0 for NaN). Constant time: occlusion culling asks it for every macro cell.
+  float minAlpha(float s0, float s1) const;
   //! True when some lookup(s) with s in [s0, s1] can have opacity > 0 (conservative by one entry
   //! on each side). Constant time: empty-space skipping asks it for every macro cell.
   bool anyVisible(float s0, float s1) const;
@@ -76,6 +79,8 @@ class TransferTable {
  private:
   std::vector<glm::vec4> entries_;
   std::vector<int> visibleBefore_;  //!< visibleBefore_[i]: entries before i with opacity > 0
+  //! minAlphaRuns_[l][i]: smallest opacity of entries [i, i + 2^l) (a sparse table for range minima)
+  std::vector<std::vector<float>> minAlphaRuns_;
 };
 
 }  // namespace kdswap

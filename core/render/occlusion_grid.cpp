@@ -1,0 +1,113 @@
+// Occlusion culling: the replicated cell summary, per-frame optical depths, and a march through the
+// cells in front of a brick (3D DDA) that bounds the opacity the single-node ray has gathered.
+#include "core/render/occlusion_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
+
+namespace kdswap {
+namespace {
+
+constexpr int kCell = 1 << Brick::kCellShift;
+// Float accumulation of "over" can fall short of the exact opacity product by about one rounding
+// per sample; this much opacity margin covers thousands of samples.
+constexpr float kOpacityMargin = 1e-3f;
+
+}  // namespace
+
+CellRangeGrid CellRangeGrid::fromBricks(const glm::ivec3& dims, const std::vector<const Brick*>& bricks) {
+  CellRangeGrid g;
+  g.dims = dims;
+  g.count = glm::max((dims - 2) / kCell + 1, glm::ivec3(1));  // samples' floors lie in [0, dims - 2]
+  g.ranges.assign(std::size_t(g.count.x) * g.count.y * g.count.z,
+                  glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
+  for (const Brick* b : bricks) {
+    if (b->empty()) continue;
+    const glm::ivec3 n = b->cellCount(), c0 = b->cellLo();
+    const std::vector<glm::vec2>& local = b->cellRanges();
+    for (int z = 0; z < n.z; ++z)
+      for (int y = 0; y < n.y; ++y)
+        for (int x = 0; x < n.x; ++x) {
+          const glm::ivec3 c = c0 + glm::ivec3(x, y, z);
+          if (glm::any(glm::greaterThanEqual(c, g.count))) continue;
+          const glm::vec2 r = local[(std::size_t(z) * n.y + y) * n.x + x];
+          glm::vec2& out = g.ranges[(std::size_t(c.z) * g.count.y + c.y) * g.count.x + c.x];
+          out.x = std::min(out.x, r.x);
+          out.y = std::max(out.y, r.y);
+        }
+  }
+  return g;
+}
+
+OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& table, float scale, float bias,
+                             float stopAt)
+    : count_(cells.count), domainHi_(glm::vec3(cells.dims - 1)) {
+  if (!(stopAt > 0.0f && stopAt + kOpacityMargin < 1.0f) || cells.ranges.empty()) return;
+  active_ = true;
+  threshold_ = float(-std::log1p(-double(stopAt + kOpacityMargin)));
+  depth_.resize(cells.ranges.size());
+  for (std::size_t i = 0; i < depth_.size(); ++i) {
+    const glm::vec2 r = cells.ranges[i];
+    const float a = r.x <= r.y ? table.minAlpha(r.x * scale + bias, r.y * scale + bias) : 0.0f;
+    // Rounded down, so the sum stays a lower bound of the optical depth.
+    depth_[i] = a <= 0.0f ? 0.0f : (a >= 1.0f ? 1e6f : float(-std::log1p(-double(a)) * (1.0 - 1e-6)));
+  }
+}
+
+bool OcclusionGrid::occludedBefore(const glm::vec3& o, const glm::vec3& d, float tEnd, float step, float phase) const {
+  if (!active_ || !(step > 0.0f)) return false;
+  // The part of the ray inside the sample domain, before tEnd.
+  float t0 = 0.0f, t1 = tEnd;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0f) {
+      if (o[a] < 0.0f || o[a] > domainHi_[a]) return false;
+      continue;
+    }
+    float ta = (0.0f - o[a]) / d[a], tb = (domainHi_[a] - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (!(t1 - t0 > 2.0f * step)) return false;
+
+  // 3D DDA over the cells from t0 to t1. Each segment counts the lattice points at least a margin
+  // inside it, so rounding in positions and cell boundaries never counts a sample twice or in the
+  // wrong cell.
+  const glm::vec3 start = o + d * t0;
+  glm::ivec3 cell, dir;
+  glm::vec3 tMax, tDelta;
+  for (int a = 0; a < 3; ++a) {
+    cell[a] = std::clamp(int(std::floor(start[a] / float(kCell))), 0, count_[a] - 1);
+    dir[a] = d[a] > 0.0f ? 1 : -1;
+    if (d[a] == 0.0f) {
+      tMax[a] = std::numeric_limits<float>::infinity();
+      tDelta[a] = 0.0f;
+    } else {
+      const float boundary = float((cell[a] + (d[a] > 0.0f ? 1 : 0)) * kCell);
+      tMax[a] = (boundary - o[a]) / d[a];
+      tDelta[a] = float(kCell) / std::fabs(d[a]);
+    }
+  }
+  float sum = 0.0f, t = t0;
+  for (;;) {
+    const int axis = tMax.x <= tMax.y ? (tMax.x <= tMax.z ? 0 : 2) : (tMax.y <= tMax.z ? 1 : 2);
+    const float segmentEnd = std::min(tMax[axis], t1);
+    const float margin = 0.02f * step + 1e-6f * std::fabs(segmentEnd);
+    const float samples = std::ceil((segmentEnd - margin) / step - phase) - std::ceil((t + margin) / step - phase);
+    if (samples > 0.0f) {
+      sum += depth_[(std::size_t(cell.z) * count_.y + cell.y) * count_.x + cell.x] * samples;
+      if (sum >= threshold_) return true;
+    }
+    if (segmentEnd >= t1) return false;
+    cell[axis] += dir[axis];
+    if (cell[axis] < 0 || cell[axis] >= count_[axis]) return false;
+    t = std::max(t, segmentEnd);
+    tMax[axis] += tDelta[axis];
+  }
+}
+
+}  // namespace kdswap
