@@ -32,13 +32,6 @@ std::vector<std::uint8_t> bruteForce(const std::vector<std::uint8_t>& marks, con
   return d;
 }
 
-Brick brickOf(const VolumeSource& source, const VoxelBox& owned) {
-  const VoxelBox stored = Brick::storedBoxFor(owned, source.info().dims);
-  std::vector<float> raw(std::size_t(stored.count()));
-  source.read(stored, raw.data());
-  return Brick(owned, source.info().dims, source.info().spacing, std::move(raw));
-}
-
 }  // namespace
 
 TEST_CASE("the cell distance map is the chessboard distance to the nearest visible cell") {
@@ -73,7 +66,7 @@ TEST_CASE("skipping empty space changes no pixel, only the number of samples tak
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
     // The whole volume and a brick cut out of it (skipping works on the brick's own cells).
     const Brick bricks[] = {wholeVolumeBrick(*volume),
-                            brickOf(*volume, VoxelBox{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)})};
+                            test::brickOf(*volume, VoxelBox{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)})};
     for (const Brick& brick : bricks)
       for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f}) {
         View view;

@@ -57,17 +57,14 @@ TEST_CASE("occlusion bound: every ray it culls is one the single-node ray ends b
     const float step = 0.7f;
     const TransferTable table(loadTransferFunction("grayscale"), step);
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
-    const float scale = 1.0f / (range.y - range.x), bias = -range.x * scale;
+    const float scale = normalisingScaleBias(range).x, bias = normalisingScaleBias(range).y;
     const float stopAt = 0.95f;
     // The summary gathered from a k-d split must serve as well as the whole volume's.
     std::vector<Brick> parts;
     const int cut = dims.x / 2 + 3;
     for (const VoxelBox& owned : {VoxelBox{glm::ivec3(0), glm::ivec3(cut, dims.y - 1, dims.z - 1)},
                                   VoxelBox{glm::ivec3(cut, 0, 0), dims - 1}}) {
-      const VoxelBox stored = Brick::storedBoxFor(owned, dims);
-      std::vector<float> raw(std::size_t(stored.count()));
-      volume->read(stored, raw.data());
-      parts.emplace_back(owned, dims, volume->info().spacing, std::move(raw));
+      parts.push_back(test::brickOf(*volume, owned));
     }
     const CellRangeGrid fromParts = CellRangeGrid::fromBricks(dims, {&parts[0], &parts[1]});
     const CellRangeGrid fromWhole = CellRangeGrid::fromBricks(dims, {&whole});

@@ -12,17 +12,6 @@
 
 using namespace kdswap;
 
-namespace {
-
-Brick brickOf(const VolumeSource& source, const VoxelBox& owned) {
-  const VoxelBox stored = Brick::storedBoxFor(owned, source.info().dims);
-  std::vector<float> raw(std::size_t(stored.count()));
-  source.read(stored, raw.data());
-  return Brick(owned, source.info().dims, source.info().spacing, std::move(raw));
-}
-
-}  // namespace
-
 TEST_CASE("a ray split into 2 to 8 segments at arbitrary cuts equals the whole ray") {
   auto volume = test::makeBlobs({40, 36, 44}, glm::vec3(1.0f, 1.3f, 0.9f));
   const glm::ivec3 dims = volume->info().dims;
@@ -55,7 +44,7 @@ TEST_CASE("a ray split into 2 to 8 segments at arbitrary cuts equals the whole r
         VoxelBox owned{glm::ivec3(0), dims - 1};
         owned.lo[axis] = lo;
         owned.hi[axis] = hi;
-        bricks.push_back(brickOf(*volume, owned));
+        bricks.push_back(test::brickOf(*volume, owned));
         lo = hi;
       }
       for (int r = 0; r < 20; ++r) {
@@ -92,7 +81,7 @@ TEST_CASE("the segments of a split ray take exactly the samples of the whole ray
   settings.earlyTermination = 1.0f;
   const glm::vec2 range(0.0f, 1.0f);
   VoxelBox left{glm::ivec3(0), glm::ivec3(13, 29, 29)}, right{glm::ivec3(13, 0, 0), glm::ivec3(29)};
-  const Brick a = brickOf(*volume, left), b = brickOf(*volume, right);
+  const Brick a = test::brickOf(*volume, left), b = test::brickOf(*volume, right);
   const Ray ray{glm::vec3(-50.0f, 14.2f, 15.1f), glm::normalize(glm::vec3(1.0f, 0.01f, -0.02f))};
   RenderCounters wholeCount, partCount;
   RayCaster(whole, table, settings, range).castRay(ray, wholeCount);

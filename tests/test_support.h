@@ -30,6 +30,14 @@ inline std::unique_ptr<MemoryVolume> makeVolume(glm::ivec3 dims, const std::func
   return std::make_unique<MemoryVolume>(info, std::move(v));
 }
 
+//! The brick owning `owned` of `source`, with its replicated and ghost layers read from it.
+inline Brick brickOf(const VolumeSource& source, const VoxelBox& owned) {
+  const VoxelBox stored = Brick::storedBoxFor(owned, source.info().dims);
+  std::vector<float> raw(std::size_t(stored.count()));
+  source.read(stored, raw.data());
+  return Brick(owned, source.info().dims, source.info().spacing, std::move(raw));
+}
+
 //! A smooth blobby volume with structure at every scale the tests use.
 inline std::unique_ptr<MemoryVolume> makeBlobs(glm::ivec3 dims, glm::vec3 spacing = glm::vec3(1.0f)) {
   return makeVolume(

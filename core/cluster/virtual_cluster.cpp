@@ -225,10 +225,8 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
   std::optional<OcclusionGrid> occlusion;
   if (request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1) {
-    const glm::vec2 r = plan.valueRange;
-    const float span = r.y - r.x;
-    occlusion.emplace(cellRanges_, plan.table, span > 0.0f ? 1.0f / span : 0.0f, span > 0.0f ? -r.x / span : 0.0f,
-                      request.settings.earlyTermination);
+    const glm::vec2 map = normalisingScaleBias(plan.valueRange);
+    occlusion.emplace(cellRanges_, plan.table, map.x, map.y, request.settings.earlyTermination);
     plan.occlusion = &*occlusion;
   }
   BrickSchedule schedule;

@@ -30,8 +30,8 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
     : brick_(brick),
       table_(table),
       settings_(settings),
-      scale_(valueRange.y > valueRange.x ? 1.0f / (valueRange.y - valueRange.x) : 0.0f),
-      bias_(valueRange.y > valueRange.x ? -valueRange.x / (valueRange.y - valueRange.x) : 0.0f),
+      scale_(normalisingScaleBias(valueRange).x),
+      bias_(normalisingScaleBias(valueRange).y),
       emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace),
       occlusion_(occlusion && occlusion->active() ? occlusion : nullptr) {
   const glm::vec3 sp = brick.spacing();

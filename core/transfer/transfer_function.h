@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <nlohmann/json_fwd.hpp>
@@ -50,6 +51,13 @@ class TransferFunction {
   std::vector<OpacityPoint> opacity_;
   std::string name_;
 };
+
+//! (scale, bias) mapping scalars of `valueRange` to [0, 1]: normalised = value * scale + bias
+//! (0 and 0 for an empty range). Everything that looks values up in a TransferTable uses this one.
+inline glm::vec2 normalisingScaleBias(glm::vec2 valueRange) {
+  const float span = valueRange.y - valueRange.x;
+  return span > 0.0f ? glm::vec2(1.0f / span, -valueRange.x / span) : glm::vec2(0.0f);
+}
 
 //! A TransferFunction baked for one sampling step: a lookup table of colour and step-corrected
 //! opacity, interpolated linearly. The ray caster reads only this.
