@@ -11,7 +11,7 @@
 #include "core/cluster/brick_schedule.h"
 #include "core/composite/strategy.h"
 #include "core/partition/kd_tree.h"
-#include "core/render/occlusion_grid.h"
+#include "core/render/occlusion_map.h"
 #include "core/render/render_settings.h"
 #include "core/transfer/transfer_function.h"
 
@@ -38,7 +38,7 @@ struct FramePlan {
   const Strategy& strategy;
   glm::vec3 spacing;
   const BrickSchedule* bricks = nullptr;  //!< over-decomposition: who renders which brick
-  const OcclusionGrid* occlusion = nullptr;  //!< cross-brick occlusion culling, when available
+  const OcclusionMap* occlusion = nullptr;  //!< cross-brick occlusion culling, when available
   Rect frame() const { return camera.frame(); }
 };
 

@@ -223,11 +223,16 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
                 ": each side must be between 1 and 16384");
   const double start = nowSeconds();
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
-  std::optional<OcclusionGrid> occlusion;
+  std::optional<OcclusionMap> occlusion;
   if (request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1) {
     const glm::vec2 map = normalisingScaleBias(plan.valueRange);
-    occlusion.emplace(cellRanges_, plan.table, map.x, map.y, request.settings.earlyTermination);
-    plan.occlusion = &*occlusion;
+    const OcclusionGrid grid(cellRanges_, plan.table, map.x, map.y, request.settings.earlyTermination);
+    if (grid.active())
+      arena_.execute([&] {
+        occlusion.emplace(grid, plan.camera, glm::vec3(info_.dims - 1) * info_.spacing, info_.spacing,
+                          request.settings);
+      });
+    if (occlusion) plan.occlusion = &*occlusion;
   }
   BrickSchedule schedule;
   std::vector<std::set<int>> heldBefore;

@@ -8,6 +8,7 @@
 // approximation: it never skips a sample the single-node image uses.
 #pragma once
 
+#include <climits>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -35,10 +36,13 @@ class OcclusionGrid {
   //! the early-termination opacity. Inactive when early termination is off (stopAt >= 1).
   OcclusionGrid(const CellRangeGrid& cells, const TransferTable& table, float scale, float bias, float stopAt);
 
+  static constexpr long kNever = LONG_MAX;
+
   bool active() const { return active_; }
-  //! True when the lattice samples (t = (k + phase) * step) of the whole-volume ray o + d t (voxel
-  //! coordinates) with t < tEnd certainly reach opacity stopAt: the single-node ray ends before tEnd.
-  bool occludedBefore(const glm::vec3& o, const glm::vec3& d, float tEnd, float step, float phase) const;
+  //! A lattice index K such that the samples k < K (t = (k + phase) * step) of the whole-volume ray
+  //! o + d t (voxel coordinates) certainly reach opacity stopAt: the single-node ray ends before
+  //! sample K, so no sample k >= K counts. The smallest such K the summary proves; kNever if none.
+  long occludedFrom(const glm::vec3& o, const glm::vec3& d, float step, float phase) const;
 
  private:
   glm::ivec3 count_{0};

@@ -15,6 +15,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "core/render/trilinear.h"
+#include "core/render/voxel_ray.h"
 #include "core/util/clock.h"
 
 namespace kdswap {
@@ -26,26 +27,24 @@ constexpr int kSpecularEntries = 256;
 }  // namespace
 
 RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
-                     const OcclusionGrid* occlusion)
+                     const OcclusionMap* occlusion)
     : brick_(brick),
       table_(table),
       settings_(settings),
       scale_(normalisingScaleBias(valueRange).x),
       bias_(normalisingScaleBias(valueRange).y),
       emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace),
-      occlusion_(occlusion && occlusion->active() ? occlusion : nullptr) {
-  const glm::vec3 sp = brick.spacing();
-  stepWorld_ = settings.stepVoxels * std::min({sp.x, sp.y, sp.z});
+      occlusion_(occlusion) {
   specular_.resize(kSpecularEntries + 1);
   for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
 }
 
-Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
+Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedFrom) const {
   if (!emptySpace_.anyVisible()) return Rgba{};
   // Ray in voxel coordinates: every brick computes these identically for the same pixel.
-  const glm::vec3 spacing = brick_.spacing();
-  const glm::vec3 o = ray.origin / spacing;
-  const glm::vec3 d = ray.direction / spacing;
+  const VoxelRay voxelRay(ray, brick_.spacing(), settings_);
+  const glm::vec3 o = voxelRay.origin;
+  const glm::vec3 d = voxelRay.direction;
   const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
   const glm::vec3 clipLo = emptySpace_.visibleLo(), clipHi = emptySpace_.visibleHi();
 
@@ -69,11 +68,15 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   if (tNear > tFar) return Rgba{};
   ++counters.rays;
 
-  const float step = stepWorld_;
-  const float phase = settings_.jitter ? ray.offset : 0.0f;
+  const float step = voxelRay.step;
+  const float phase = voxelRay.phase;
   // One lattice index of slack on each side: the per-sample test below is the exact rule.
   const long kBegin = std::max(0L, long(std::floor(tNear / step - phase)) - 1);
-  const long kEnd = long(std::ceil(tFar / step - phase)) + 1;
+  if (kBegin >= occludedFrom) {  // the single-node ray ends before this brick
+    ++counters.occluded;
+    return Rgba{};
+  }
+  const long kEnd = std::min(long(std::ceil(tFar / step - phase)) + 1, occludedFrom - 1);
 
   const glm::vec3 toLight = -ray.direction;  // light at the eye
   const bool shading = settings_.shading;
@@ -86,7 +89,6 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
   std::size_t lastJumpedCell = std::size_t(-1);
-  bool frontChecked = !occlusion_;  // asked at the first sample that may be visible, not per ray
   for (long k = kBegin; k <= kEnd; ++k) {
     const float t = (float(k) + phase) * step;
     const glm::vec3 p = o + d * t;
@@ -107,13 +109,6 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters) const {
       const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
       if (resume > k) k = resume;
       continue;
-    }
-    if (!frontChecked) {
-      frontChecked = true;
-      if (occlusion_->occludedBefore(o, d, t, step, phase)) {
-        ++counters.occluded;
-        break;
-      }
     }
     ++samples;
     const TrilinearCell cell(brick_, p);
@@ -160,7 +155,8 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
           RenderCounters& local = perThread.local();
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
             for (int x = tile.cols().begin(); x < tile.cols().end(); ++x)
-              image.at(x, y) = castRay(camera.ray(x, y), local);
+              image.at(x, y) =
+                  castRay(camera.ray(x, y), local, occlusion_ ? occlusion_->occludedFrom(x, y) : OcclusionGrid::kNever);
           local.seconds += nowSeconds() - start;
         });
   });

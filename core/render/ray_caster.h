@@ -11,7 +11,7 @@
 
 #include "core/camera/camera.h"
 #include "core/render/empty_space_map.h"
-#include "core/render/occlusion_grid.h"
+#include "core/render/occlusion_map.h"
 #include "core/image/image.h"
 #include "core/render/render_settings.h"
 #include "core/transfer/transfer_function.h"
@@ -29,26 +29,26 @@ struct RenderCounters {
 class RayCaster {
  public:
   //! `valueRange` maps scalars to [0, 1]. The caster keeps references: all must outlive it.
-  //! With `occlusion`, rays whose samples in front of the brick certainly end the single-node ray
-  //! are skipped (see occlusion_grid.h).
+  //! With `occlusion`, each ray stops at the lattice index from which the single-node ray's
+  //! samples certainly no longer count (see occlusion_map.h).
   RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
-            const OcclusionGrid* occlusion = nullptr);
+            const OcclusionMap* occlusion = nullptr);
 
   //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
   //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
   Image render(const Camera& camera, RenderCounters& counters) const;
 
-  //! One pixel, for tests: premultiplied colour and opacity of this brick's segment of the ray.
-  Rgba castRay(const Ray& ray, RenderCounters& counters) const;
+  //! One pixel: premultiplied colour and opacity of this brick's segment of the ray, from its
+  //! samples with lattice index below `occludedFrom`.
+  Rgba castRay(const Ray& ray, RenderCounters& counters, long occludedFrom = OcclusionGrid::kNever) const;
 
  private:
   const Brick& brick_;
   const TransferTable& table_;
   const RenderSettings& settings_;
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
-  float stepWorld_;
   EmptySpaceMap emptySpace_;     //!< invisible macro cells under this transfer function
-  const OcclusionGrid* occlusion_;
+  const OcclusionMap* occlusion_;
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
 };
 

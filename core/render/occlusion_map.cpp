@@ -1,0 +1,36 @@
+// Occlusion map: one march through the replicated cell summary per pixel, rows in parallel.
+#include "core/render/occlusion_map.h"
+
+#include <algorithm>
+
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+
+#include "core/render/voxel_ray.h"
+
+namespace kdswap {
+
+OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, const glm::vec3& volumeWorldHi,
+                           const glm::vec3& spacing, const RenderSettings& settings)
+    : rect_(camera.projectBox(glm::vec3(0.0f), volumeWorldHi)) {
+  if (rect_.empty() || !grid.active()) {
+    rect_ = Rect{};
+    return;
+  }
+  first_.resize(std::size_t(rect_.area()));
+  tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      long* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);
+      for (int x = rect_.x; x < rect_.right(); ++x) {
+        const VoxelRay r(camera.ray(x, y), spacing, settings);
+        out[x - rect_.x] = grid.occludedFrom(r.origin, r.direction, r.step, r.phase);
+      }
+    }
+  });
+}
+
+std::size_t OcclusionMap::occludedPixels() const {
+  return std::size_t(std::count_if(first_.begin(), first_.end(), [](long k) { return k != OcclusionGrid::kNever; }));
+}
+
+}  // namespace kdswap

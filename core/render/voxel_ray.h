@@ -1,0 +1,33 @@
+// VoxelRay: a camera ray as the ray caster walks it, in voxel coordinates with its sample lattice.
+// Every brick, and the occlusion map, derive it from the same Ray by this one definition, so they
+// agree on which lattice index k a sample has.
+#pragma once
+
+#include <algorithm>
+
+#include <glm/vec3.hpp>
+
+#include "core/camera/camera.h"
+#include "core/render/render_settings.h"
+
+namespace kdswap {
+
+struct VoxelRay {
+  glm::vec3 origin;     //!< voxel coordinates
+  glm::vec3 direction;  //!< voxel coordinates per unit of the world ray's t
+  float step;           //!< t between samples: sample k sits at t = (k + phase) * step
+  float phase;
+
+  VoxelRay(const Ray& ray, const glm::vec3& spacing, const RenderSettings& settings)
+      : origin(ray.origin / spacing),
+        direction(ray.direction / spacing),
+        step(worldStep(spacing, settings)),
+        phase(settings.jitter ? ray.offset : 0.0f) {}
+
+  //! Sample spacing along world rays: stepVoxels times the smallest voxel spacing.
+  static float worldStep(const glm::vec3& spacing, const RenderSettings& settings) {
+    return settings.stepVoxels * std::min({spacing.x, spacing.y, spacing.z});
+  }
+};
+
+}  // namespace kdswap
