@@ -70,7 +70,7 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
 
   const float step = voxelRay.step;
   const float phase = voxelRay.phase;
-  // One lattice index of slack on each side: the per-sample test below is the exact rule.
+  // One lattice index of slack on each side: the ownership test below is the exact rule.
   const long kBegin = std::max(0L, long(std::floor(tNear / step - phase)) - 1);
   if (kBegin >= occludedFrom) {  // the single-node ray ends before this brick
     ++counters.occluded;
@@ -78,10 +78,26 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
   }
   const long kEnd = std::min(long(std::ceil(tFar / step - phase)) + 1, occludedFrom - 1);
 
+  // The owned samples form one run of lattice indices: each coordinate of p = o + d t is monotone
+  // in k (rounding is monotone), so membership of the half-open box [lo, hi) is an interval. Its
+  // ends are found with the exact per-sample rule (each lattice point belongs to exactly one
+  // brick); the walk between them needs no test.
+  const auto samplePoint = [&](long k) { return o + d * ((float(k) + phase) * step); };
+  const auto owned = [&](const glm::vec3& p) {
+    return p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z;
+  };
+  long kFirst = kBegin, kLast = kEnd;
+  while (kFirst <= kLast && !owned(samplePoint(kFirst))) ++kFirst;
+  while (kLast >= kFirst && !owned(samplePoint(kLast))) --kLast;
+
   const glm::vec3 toLight = -ray.direction;  // light at the eye
   const bool shading = settings_.shading;
   const float ka = settings_.ambient, kd = settings_.diffuse, ks = settings_.specular;
   const float stopAt = settings_.earlyTermination;
+  const float scale = scale_, bias = bias_;
+  const TransferTable& table = table_;
+  const EmptySpaceMap& emptySpace = emptySpace_;
+  const VoxelAddressing voxels(brick_);
 
   const glm::ivec3 cellLo = brick_.cellLo();
   const glm::vec3 inverseD = 1.0f / d;  // used only on axes with d != 0
@@ -89,14 +105,12 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
   float r = 0, g = 0, b = 0, alpha = 0;
   std::uint64_t samples = 0;
   std::size_t lastJumpedCell = std::size_t(-1);
-  for (long k = kBegin; k <= kEnd; ++k) {
-    const float t = (float(k) + phase) * step;
-    const glm::vec3 p = o + d * t;
-    // Half-open ownership [lo, hi): each lattice point belongs to exactly one brick.
-    if (!(p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y && p.z >= lo.z && p.z < hi.z)) continue;
-    const glm::ivec3 c = (glm::ivec3(int(p.x), int(p.y), int(p.z)) >> Brick::kCellShift) - cellLo;
-    const std::size_t cellIndex = emptySpace_.cellIndex(c);
-    if (const int reach = emptySpace_.reach(cellIndex)) {
+  for (long k = kFirst; k <= kLast; ++k) {
+    const glm::vec3 p = samplePoint(k);
+    const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));  // p >= 0: truncation is floor
+    const glm::ivec3 c = (floor >> Brick::kCellShift) - cellLo;
+    const std::size_t cellIndex = emptySpace.cellIndex(c);
+    if (const int reach = emptySpace.reach(cellIndex)) {
       if (cellIndex == lastJumpedCell) continue;  // landed just short of the exit: step on
       lastJumpedCell = cellIndex;
       // Jump to just before the ray leaves the invisible cube of cells around this one; samples
@@ -111,10 +125,10 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
       continue;
     }
     ++samples;
-    const TrilinearCell cell(brick_, p);
+    const TrilinearCell cell(voxels, p, floor);
     const TrilinearCell::Lanes both = cell.interpolate();
     const float value = both[0];
-    const glm::vec4 tf = table_.lookup(value * scale_ + bias_);
+    const glm::vec4 tf = table.lookup(value * scale + bias);
     if (tf.a <= 0.0f) continue;
     glm::vec3 colour(tf.r, tf.g, tf.b);
     if (shading) {

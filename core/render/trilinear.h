@@ -2,24 +2,40 @@
 // coordinates. The ray caster and the tests use this one definition.
 #pragma once
 
+#include <cstddef>
+
 #include "core/volume/brick.h"
 
 static_assert(sizeof(kdswap::Voxel) == 4 * sizeof(float), "a Voxel must be exactly 4 floats");
 
 namespace kdswap {
 
+//! Where a brick's voxels are: global voxel (x, y, z) is data[origin + z * sz + y * sy + x]. Taken
+//! once per ray, so the sample loop does not reload the brick's box and strides.
+struct VoxelAddressing {
+  const Voxel* data;
+  std::ptrdiff_t sy, sz, origin;
+  explicit VoxelAddressing(const Brick& brick)
+      : data(brick.voxelData()),
+        sy(std::ptrdiff_t(brick.strideY())),
+        sz(std::ptrdiff_t(brick.strideZ())),
+        origin(-(std::ptrdiff_t(brick.stored().lo.z) * sz + std::ptrdiff_t(brick.stored().lo.y) * sy +
+                 std::ptrdiff_t(brick.stored().lo.x))) {}
+};
+
 //! Interpolation weights and the first of the 8 surrounding voxels of point p (voxel coordinates,
 //! inside the brick's owned box, so all 8 voxels are stored).
 struct TrilinearCell {
   const Voxel* v;  //!< voxel at floor(p)
-  std::size_t sy, sz;
+  std::ptrdiff_t sy, sz;
   float w[8];      //!< weights of (x,y,z) corners 000 100 010 110 001 101 011 111
 
-  TrilinearCell(const Brick& brick, const glm::vec3& p) : sy(brick.strideY()), sz(brick.strideZ()) {
-    const int ix = int(p.x), iy = int(p.y), iz = int(p.z);  // p >= 0, so truncation is floor
-    const float fx = p.x - float(ix), fy = p.y - float(iy), fz = p.z - float(iz);
-    const glm::ivec3 lo = brick.stored().lo;
-    v = brick.voxelData() + std::size_t(iz - lo.z) * sz + std::size_t(iy - lo.y) * sy + std::size_t(ix - lo.x);
+  TrilinearCell(const Brick& brick, const glm::vec3& p)
+      : TrilinearCell(VoxelAddressing(brick), p, glm::ivec3(int(p.x), int(p.y), int(p.z))) {}
+  //! `floor` = (int) p: p >= 0, so truncation is floor. The ray caster has it already.
+  TrilinearCell(const VoxelAddressing& at, const glm::vec3& p, const glm::ivec3& floor) : sy(at.sy), sz(at.sz) {
+    const float fx = p.x - float(floor.x), fy = p.y - float(floor.y), fz = p.z - float(floor.z);
+    v = at.data + (at.origin + floor.z * sz + floor.y * sy + floor.x);
     const float gx = 1.0f - fx, gy = 1.0f - fy, gz = 1.0f - fz;
     w[0] = gx * gy * gz, w[1] = fx * gy * gz, w[2] = gx * fy * gz, w[3] = fx * fy * gz;
     w[4] = gx * gy * fz, w[5] = fx * gy * fz, w[6] = gx * fy * fz, w[7] = fx * fy * fz;
