@@ -1,11 +1,13 @@
-// Image files round-trip through OpenImageIO: PNG (8-bit) and EXR (float).
+// Image files round-trip through OpenImageIO (a module loaded on first use): PNG (8-bit) and EXR (float).
 #include <doctest/doctest.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/image/image_io.h"
+#include "test_files.h"
 #include "core/util/error.h"
 
 using namespace kdswap;
@@ -69,4 +71,17 @@ TEST_CASE("writing into a missing folder fails with the path and leaves no file"
   CHECK_THROWS_WITH_AS(writeImage("/nonexistent-folder/x.png", img), doctest::Contains("/nonexistent-folder/x.png"), Error);
   CHECK_THROWS_WITH_AS(writeImage(tempPath("x.bmpx").string(), img), doctest::Contains("unsupported"), Error);
   CHECK_FALSE(std::filesystem::exists(tempPath("x.bmpx")));
+}
+
+TEST_CASE("the OpenImageIO module loads on first use; a missing module is a one-line error naming it") {
+  const test::TempDir dir;
+  const std::string out = dir.file("frame.png");
+  CHECK(test::runKdswap("render --dataset phantom:24 --size 16x16 -q -o " + out).code == 0);
+  CHECK(std::filesystem::exists(out));
+  const test::Run noModule = test::runKdswap("render --dataset phantom:24 --size 16x16 -q -o " + dir.file("x.png"),
+                                             "KDSWAP_IMAGE_MODULE=/nonexistent/mod.so");
+  CHECK(noModule.code != 0);
+  CHECK(noModule.err.find("cannot load the image file module /nonexistent/mod.so") != std::string::npos);
+  CHECK(std::count(noModule.err.begin(), noModule.err.end(), '\n') == 1);
+  CHECK(!std::filesystem::exists(dir.file("x.png")));
 }

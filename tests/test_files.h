@@ -58,11 +58,13 @@ struct Run {
   std::string err;  //!< what it printed on stderr
 };
 
-//! Runs `build/app/kdswap ARGS` (stdout discarded) and returns its exit code and stderr.
-inline Run runKdswap(const std::string& args) {
+//! Runs `build/app/kdswap ARGS` (stdout discarded) and returns its exit code and stderr. `env`:
+//! NAME=VALUE assignments for the process, e.g. "KDSWAP_IMAGE_MODULE=/x".
+inline Run runKdswap(const std::string& args, const std::string& env = "") {
   const TempDir scratch;
   const std::string err = scratch.file("stderr.txt");
-  const std::string command = std::string(KDSWAP_BINARY_DIR) + "/app/kdswap " + args + " > /dev/null 2> " + err;
+  const std::string command =
+      (env.empty() ? "" : "env " + env + " ") + std::string(KDSWAP_BINARY_DIR) + "/app/kdswap " + args + " > /dev/null 2> " + err;
   const int status = std::system(command.c_str());
   std::ifstream in(err);
   std::stringstream text;

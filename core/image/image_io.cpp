@@ -1,17 +1,51 @@
-// OpenImageIO glue: the only file that knows OIIO's API.
+// Image files: format choice, premultiplied-alpha handling and atomic replacement here; the
+// encoding itself in the OpenImageIO module (files_module/), loaded on first use.
 #include "core/image/image_io.h"
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <unistd.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include "core/util/error.h"
 
 namespace kdswap {
 namespace {
+
+using WriteFn = int (*)(const char*, int, int, int, int, const float*, char*, std::size_t);
+using ReadFn = int (*)(const char*, int*, int*, int*, float**, char*, std::size_t);
+
+struct ImageFilesModule {
+  WriteFn write = nullptr;
+  ReadFn read = nullptr;
+};
+
+//! The module, loaded once per process. KDSWAP_IMAGE_MODULE (environment) overrides the path the
+//! build placed it at.
+const ImageFilesModule& imageFilesModule() {
+  static ImageFilesModule module;
+  static std::string failure;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const char* override = std::getenv("KDSWAP_IMAGE_MODULE");
+    const std::string path = override && *override ? override : KDSWAP_IMAGE_MODULE_PATH;
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      failure = "cannot load the image file module " + path + ": " + (why ? why : "unknown error");
+      return;
+    }
+    module.write = reinterpret_cast<WriteFn>(dlsym(handle, "kdswapWriteImageFile"));
+    module.read = reinterpret_cast<ReadFn>(dlsym(handle, "kdswapReadImageFile"));
+    if (!module.write || !module.read) failure = path + ": not a kdswap image file module";
+  });
+  if (!failure.empty()) throw Error(failure);
+  return module;
+}
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -57,21 +91,12 @@ void writeImage(const std::string& path, const Image& image, const ImageWriteOpt
   const std::filesystem::path target(path);
   const std::filesystem::path temp =
       target.parent_path() / (".kdswap-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
-  auto out = OIIO::ImageOutput::create(temp.string());
-  if (!out) throw Error(path + ": OpenImageIO cannot write this format: " + OIIO::geterror());
-  OIIO::ImageSpec spec(w, h, channels, floatOut ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-  if (floatOut) spec.set_format(OIIO::TypeDesc::FLOAT);
-  if (channels == 4) spec.alpha_channel = 3;
-  if (!out->open(temp.string(), spec)) {
-    const std::string why = out->geterror();
-    throw Error(path + ": cannot open for writing: " + why);
-  }
-  const bool ok = out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
-  if (!ok) {
-    const std::string why = out->geterror();
+  char why[512] = "";
+  if (!imageFilesModule().write(temp.string().c_str(), w, h, channels, floatOut ? 1 : 0, pixels.data(), why,
+                                sizeof why)) {
     std::error_code ignored;  // the temp file is ours; the error below is what matters
     std::filesystem::remove(temp, ignored);
-    throw Error(path + ": write failed: " + why);
+    throw Error(path + ": " + why);
   }
   std::error_code ec;
   std::filesystem::rename(temp, target, ec);
@@ -83,20 +108,16 @@ void writeImage(const std::string& path, const Image& image, const ImageWriteOpt
 }
 
 Image readImage(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, c = spec.nchannels;
-  std::vector<float> raw(std::size_t(w) * h * c);
-  if (!in->read_image(0, 0, 0, c, OIIO::TypeDesc::FLOAT, raw.data())) {
-    const std::string why = in->geterror();
-    throw Error(path + ": read failed: " + why);
-  }
-  in->close();
+  int w = 0, h = 0, c = 0;
+  float* pixels = nullptr;
+  char why[512] = "";
+  if (!imageFilesModule().read(path.c_str(), &w, &h, &c, &pixels, why, sizeof why)) throw Error(path + ": " + why);
+  const std::unique_ptr<float, decltype(&std::free)> raw(pixels, &std::free);
+  if (w < 1 || h < 1 || c < 1) throw Error(path + ": image has no pixels");
   Image img(Rect{0, 0, w, h});
   Rgba* dst = img.data();
   for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
-    const float* s = &raw[i * c];
+    const float* s = raw.get() + i * std::size_t(c);
     const float gray = s[0];
     dst[i].r = gray;
     dst[i].g = c >= 3 ? s[1] : gray;
