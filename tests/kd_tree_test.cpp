@@ -7,6 +7,7 @@
 #include "core/camera/camera.h"
 #include "core/partition/kd_tree.h"
 #include "core/volume/brick.h"
+#include "test_support.h"
 
 using namespace kdswap;
 
@@ -41,6 +42,33 @@ TEST_CASE("a brick stores its owned voxels plus one replicated layer and one gra
       CHECK(stored.hi[a] == std::min(owned.hi[a] + 2, dims[a]));
     }
     CHECK(stored.count() < std::int64_t(dims.x) * dims.y * dims.z);  // no node holds the whole volume
+  }
+}
+
+TEST_CASE("a brick keeps values and gradients only where its samples reach, and ships exactly what it received") {
+  auto volume = test::makeBlobs({37, 30, 26}, glm::vec3(1.0f, 0.8f, 1.4f));
+  const glm::ivec3 dims = volume->info().dims;
+  const Brick whole = test::brickOf(*volume, VoxelBox{glm::ivec3(0), dims - 1});
+  const KdTree tree = KdTree::build(dims, 8, PartitionKind::KdTree);
+  for (int r = 0; r < 8; ++r) {
+    const VoxelBox owned = tree.brick(r);
+    const VoxelBox received = Brick::storedBoxFor(owned, dims);
+    std::vector<float> raw(std::size_t(received.count()));
+    volume->read(received, raw.data());
+    const Brick brick(owned, dims, volume->info().spacing, raw);
+    CHECK(brick.stored() == VoxelBox{owned.lo, owned.hi + 1});  // samples in [lo, hi) touch voxels lo..hi
+    CHECK(brick.storedValues() == raw);                          // shipping loses nothing
+    const Brick rebuilt(owned, dims, volume->info().spacing, brick.storedValues());
+    int differing = 0;
+    for (int z = brick.stored().lo.z; z < brick.stored().hi.z; ++z)
+      for (int y = brick.stored().lo.y; y < brick.stored().hi.y; ++y)
+        for (int x = brick.stored().lo.x; x < brick.stored().hi.x; ++x) {
+          const Voxel &a = brick.voxel(x, y, z), &b = rebuilt.voxel(x, y, z), &w = whole.voxel(x, y, z);
+          differing += !(a.value == b.value && a.gradient == b.gradient);
+          differing += !(a.value == w.value && a.gradient == w.gradient);  // gradients equal the whole volume's
+        }
+    CHECK(differing == 0);
+    CHECK(brick.bytes() < std::uint64_t(received.count()) * sizeof(Voxel));
   }
 }
 

@@ -18,6 +18,11 @@ VoxelBox Brick::storedBoxFor(const VoxelBox& owned, const glm::ivec3& dims) {
   return VoxelBox{glm::max(owned.lo - 1, glm::ivec3(0)), glm::min(owned.hi + 2, dims)};
 }
 
+VoxelBox Brick::keptBoxFor(const VoxelBox& owned) {
+  if (owned.empty()) return VoxelBox{};
+  return VoxelBox{owned.lo, owned.hi + 1};
+}
+
 VoxelBox Brick::ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims) {
   if (owned.empty()) return VoxelBox{};
   VoxelBox v = owned;
@@ -27,33 +32,36 @@ VoxelBox Brick::ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims) {
 }
 
 std::vector<float> Brick::storedValues() const {
-  std::vector<float> values(voxels_.size());
-  for (std::size_t i = 0; i < voxels_.size(); ++i) values[i] = voxels_[i].value;
+  std::vector<float> values;
+  values.reserve(std::size_t(received_.count()));
+  std::size_t next = 0;
+  for (int z = received_.lo.z; z < received_.hi.z; ++z)
+    for (int y = received_.lo.y; y < received_.hi.y; ++y)
+      for (int x = received_.lo.x; x < received_.hi.x; ++x)
+        values.push_back(stored_.contains(glm::ivec3(x, y, z)) ? voxel(x, y, z).value : shell_[next++]);
   return values;
 }
 
 Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw)
-    : owned_(owned), stored_(storedBoxFor(owned, dims)), dims_(dims), spacing_(spacing) {
+    : owned_(owned), stored_(keptBoxFor(owned)), received_(storedBoxFor(owned, dims)), dims_(dims), spacing_(spacing) {
   if (owned_.empty()) return;
+  KDSWAP_CHECK_EQ(raw.size(), std::size_t(received_.count()));
+  const glm::ivec3 r = received_.size();
+  auto at = [&](int x, int y, int z) {
+    return raw[(std::size_t(z - received_.lo.z) * r.y + std::size_t(y - received_.lo.y)) * r.x + (x - received_.lo.x)];
+  };
   const glm::ivec3 s = stored_.size();
   strideY_ = std::size_t(s.x);
   strideZ_ = std::size_t(s.x) * s.y;
-  KDSWAP_CHECK_EQ(raw.size(), std::size_t(stored_.count()));
-  voxels_.resize(raw.size());
-  auto at = [&](int x, int y, int z) {
-    return raw[std::size_t(z - stored_.lo.z) * strideZ_ + std::size_t(y - stored_.lo.y) * strideY_ + (x - stored_.lo.x)];
-  };
-  // Gradients are needed at the voxels of [owned.lo, owned.hi]; the outer ghost layer only feeds them.
-  const glm::ivec3 gLo = owned_.lo, gHi = glm::min(owned_.hi, dims - 1);
+  voxels_.resize(std::size_t(stored_.count()));
+  // Every kept voxel gets its gradient; the outer ghost layer of `raw` only feeds them.
   for (int z = stored_.lo.z; z < stored_.hi.z; ++z)
     for (int y = stored_.lo.y; y < stored_.hi.y; ++y)
       for (int x = stored_.lo.x; x < stored_.hi.x; ++x) {
         Voxel& out = voxels_[std::size_t(z - stored_.lo.z) * strideZ_ + std::size_t(y - stored_.lo.y) * strideY_ +
                              (x - stored_.lo.x)];
         out.value = at(x, y, z);
-        out.gradient = glm::vec3(0.0f);
         const glm::ivec3 p(x, y, z);
-        if (glm::any(glm::lessThan(p, gLo)) || glm::any(glm::greaterThan(p, gHi))) continue;
         for (int a = 0; a < 3; ++a) {
           glm::ivec3 lo = p, hi = p;
           lo[a] = std::max(p[a] - 1, 0);
@@ -62,6 +70,11 @@ Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spa
           out.gradient[a] = (at(hi.x, hi.y, hi.z) - at(lo.x, lo.y, lo.z)) / span;
         }
       }
+  for (int z = received_.lo.z; z < received_.hi.z; ++z)
+    for (int y = received_.lo.y; y < received_.hi.y; ++y)
+      for (int x = received_.lo.x; x < received_.hi.x; ++x)
+        if (!stored_.contains(glm::ivec3(x, y, z))) shell_.push_back(at(x, y, z));
+  shell_.shrink_to_fit();
   buildCells();
 }
 

@@ -1,8 +1,9 @@
 // Brick: one node's private subvolume (paper section 3.2). It owns the sample positions in the
-// continuous box [owned.lo, owned.hi) of voxel coordinates and stores the voxels it needs for them:
-// the owned voxels, the one replicated boundary layer that trilinear interpolation reaches across
-// a cut, and one more ghost layer so its central-difference gradients equal the whole volume's.
-// Gradients are precomputed per voxel (memory for time, as the paper does).
+// continuous box [owned.lo, owned.hi) of voxel coordinates. It receives the voxels it needs for
+// them: the owned voxels, the one replicated boundary layer that trilinear interpolation reaches
+// across a cut, and one more ghost layer so its central-difference gradients equal the whole
+// volume's. Gradients are precomputed per voxel (memory for time, as the paper does); once they
+// are, the outer ghost layer is only kept as plain values, for shipping the brick on.
 #pragma once
 
 #include <cstdint>
@@ -29,19 +30,21 @@ class Brick {
 
   //! Voxel indices a brick owning `owned` must receive: [lo - 1, hi + 1] clipped to the volume.
   static VoxelBox storedBoxFor(const VoxelBox& owned, const glm::ivec3& dims);
+  //! Voxel indices whose values and gradients the brick keeps: [lo, hi], what its samples touch.
+  static VoxelBox keptBoxFor(const VoxelBox& owned);
   //! Voxel indices this brick owns for accounting: [lo, hi), plus hi where hi is the volume's
   //! last voxel (the volume's upper faces belong to the bricks that touch them).
   static VoxelBox ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims);
 
   bool empty() const { return owned_.empty(); }
   const VoxelBox& owned() const { return owned_; }
-  const VoxelBox& stored() const { return stored_; }
+  const VoxelBox& stored() const { return stored_; }  //!< the voxels kept: keptBoxFor(owned)
   const glm::ivec3& volumeDims() const { return dims_; }
   const glm::vec3& spacing() const { return spacing_; }
   glm::vec3 worldLo() const { return glm::vec3(owned_.lo) * spacing_; }
   glm::vec3 worldHi() const { return glm::vec3(owned_.hi) * spacing_; }
 
-  //! Stored voxel at global index (x, y, z), which must lie in stored().
+  //! Kept voxel at global index (x, y, z), which must lie in stored().
   const Voxel& voxel(int x, int y, int z) const {
     return voxels_[(std::size_t(z - stored_.lo.z) * strideZ_) + std::size_t(y - stored_.lo.y) * strideY_ +
                    std::size_t(x - stored_.lo.x)];
@@ -50,12 +53,14 @@ class Brick {
   std::size_t strideY() const { return strideY_; }
   std::size_t strideZ() const { return strideZ_; }
 
-  //! The scalar values of stored() (x fastest): what the brick was built from, so a node can ship
-  //! its brick to another (over-decomposition) and the receiver rebuilds identical voxels.
+  //! The scalar values of storedBoxFor(owned, dims) (x fastest): what the brick was built from, so
+  //! a node can ship its brick to another (over-decomposition) and the receiver rebuilds identical voxels.
   std::vector<float> storedValues() const;
 
   //! Bytes of this node's private memory held by the brick.
-  std::uint64_t bytes() const { return voxels_.size() * sizeof(Voxel) + cellRanges_.size() * sizeof(glm::vec2); }
+  std::uint64_t bytes() const {
+    return voxels_.size() * sizeof(Voxel) + shell_.size() * sizeof(float) + cellRanges_.size() * sizeof(glm::vec2);
+  }
 
   //! Macro cells for empty-space skipping: cell c covers samples whose floor lies in
   //! [8c, 8c + 8) (global voxel index, per axis) and stores the min and max of every voxel a
@@ -67,11 +72,13 @@ class Brick {
 
  private:
   VoxelBox owned_;
-  VoxelBox stored_;
+  VoxelBox stored_;    //!< kept voxels (values and gradients)
+  VoxelBox received_;  //!< storedBoxFor(owned, dims)
   glm::ivec3 dims_{0};
   glm::vec3 spacing_{1.0f};
   std::size_t strideY_ = 0, strideZ_ = 0;
   std::vector<Voxel> voxels_;
+  std::vector<float> shell_;  //!< values of received_ outside stored_, in received_'s order
   glm::ivec3 cellLo_{0}, cellCount_{0};
   std::vector<glm::vec2> cellRanges_;  //!< (min, max) per macro cell, x fastest
 
