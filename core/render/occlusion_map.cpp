@@ -20,17 +20,18 @@ OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, cons
   first_.resize(std::size_t(rect_.area()));
   tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
-      long* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);
+      std::int32_t* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);
       for (int x = rect_.x; x < rect_.right(); ++x) {
         const VoxelRay r(camera.ray(x, y), spacing, settings);
-        out[x - rect_.x] = grid.occludedFrom(r.origin, r.direction, r.step, r.phase);
+        const long k = grid.occludedFrom(r.origin, r.direction, r.step, r.phase);
+        out[x - rect_.x] = k >= long(kNeverStored) ? kNeverStored : std::int32_t(k);
       }
     }
   });
 }
 
 std::size_t OcclusionMap::occludedPixels() const {
-  return std::size_t(std::count_if(first_.begin(), first_.end(), [](long k) { return k != OcclusionGrid::kNever; }));
+  return std::size_t(std::count_if(first_.begin(), first_.end(), [](std::int32_t k) { return k != kNeverStored; }));
 }
 
 }  // namespace kdswap

@@ -5,6 +5,8 @@
 // pixel and brick (the march from the eye to a deep brick crosses most of the volume).
 #pragma once
 
+#include <climits>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -26,14 +28,18 @@ class OcclusionMap {
   //! Samples with lattice index >= this do not count for pixel (x, y); kNever outside the volume.
   long occludedFrom(int x, int y) const {
     if (!rect_.contains(x, y)) return OcclusionGrid::kNever;
-    return first_[std::size_t(y - rect_.y) * std::size_t(rect_.w) + std::size_t(x - rect_.x)];
+    const std::int32_t k = first_[std::size_t(y - rect_.y) * std::size_t(rect_.w) + std::size_t(x - rect_.x)];
+    return k == kNeverStored ? OcclusionGrid::kNever : long(k);
   }
   //! Pixels of the map whose rays end inside the volume (for statistics and tests).
   std::size_t occludedPixels() const;
 
  private:
+  //! Stored as 32 bits (half the memory of a frame-sized map); an index beyond that range is
+  //! stored as "never", which only culls less.
+  static constexpr std::int32_t kNeverStored = INT32_MAX;
   Rect rect_;
-  std::vector<long> first_;
+  std::vector<std::int32_t> first_;
 };
 
 }  // namespace kdswap
