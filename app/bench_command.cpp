@@ -18,6 +18,7 @@
 #include "core/bench/micro_bench.h"
 #include "core/bench/paper_comparison.h"
 #include "core/bench/quantised_source.h"
+#include "core/volume/respaced_source.h"
 #include "core/bench/speed_targets.h"
 #include "core/bench/speedup_chart.h"
 #include "core/image/image_io.h"
@@ -30,7 +31,7 @@ namespace kdswap {
 namespace {
 
 struct BenchOptions {
-  std::string dataset, volume, sizes = "64,128,256,512", nodes = "1,2,4,8,16,32,64,128,256,512";
+  std::string dataset, volume, spacing, sizes = "64,128,256,512", nodes = "1,2,4,8,16,32,64,128,256,512";
   std::string composite = "binary-swap", tf, shading = "on", partition = "kd", outDir = "bench-out";
   std::string head = "../shared/data/headsq.nhdr", view = "30,15";
   std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1";
@@ -82,6 +83,7 @@ void progressLine(const BenchProgress& p) {
 std::string commandLine(const BenchOptions& o) {
   std::string c = "kdswap bench " + (o.volume.empty() ? "--dataset " + (o.dataset.empty() ? std::string(kDefaultDataset) : o.dataset)
                                                       : "--volume " + o.volume);
+  if (!o.spacing.empty()) c += " --spacing " + o.spacing;
   if (o.quantise) c += " --quantise " + std::to_string(o.quantise);
   char buf[512];
   std::snprintf(buf, sizeof buf, " --sizes %s --nodes %s --composite %s --frames %d --degrees %g --step %g --shading %s --ert %g --view %s --partition %s%s --threads %d",
@@ -97,6 +99,7 @@ void runGrid(const BenchOptions& o) {
   if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
   std::unique_ptr<VolumeSource> source =
       o.volume.empty() ? openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset) : openVolumeFile(o.volume);
+  if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   const VolumeInfo& info = source->info();
   BenchGridOptions g;
@@ -218,6 +221,7 @@ void addBenchCommand(CLI::App& app) {
       "Ctrl-C stops after the current frame and writes what was measured (exit 130).\n");
   cmd->add_option("--dataset", o->dataset, "Built-in data set NAME[:N]: phantom (head), vessels, turbulence (vorticity)");
   cmd->add_option("--volume", o->volume, "Volume file instead of a data set");
+  cmd->add_option("--spacing", o->spacing, "Voxel spacing SX,SY,SZ instead of the data's (e.g. 1,1,1)");
   cmd->add_option("--quantise", o->quantise, "Round the data to 8 or 16 bits first (0: as stored)");
   cmd->add_option("--sizes", o->sizes, "Square image sides, comma-separated")->capture_default_str();
   cmd->add_option("--nodes", o->nodes, "Node counts, comma-separated")->capture_default_str();

@@ -14,6 +14,7 @@
 #include "core/bench/bench_report.h"
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
+#include "core/volume/respaced_source.h"
 #include "core/bench/speedup_chart.h"
 #include "core/bench/statistics.h"
 #include "core/image/image_io.h"
@@ -125,6 +126,21 @@ TEST_CASE("quantising to 8 bits leaves at most 256 distinct values") {
   std::sort(raw.begin(), raw.end());
   CHECK(std::unique(raw.begin(), raw.end()) - raw.begin() <= 256);
   CHECK(q.info().type == "uint8");
+}
+
+TEST_CASE("a respaced source keeps the values and changes only the spacing; bad spacings are refused") {
+  auto inner = test::makeBlobs(glm::ivec3(12, 10, 8), glm::vec3(3.2f, 3.2f, 1.5f));
+  std::vector<float> before(12 * 10 * 8), after(before.size());
+  inner->read(VoxelBox{glm::ivec3(0), glm::ivec3(12, 10, 8)}, before.data());
+  const RespacedSource unit(std::move(inner), glm::vec3(1.0f));
+  unit.read(VoxelBox{glm::ivec3(0), glm::ivec3(12, 10, 8)}, after.data());
+  CHECK(before == after);
+  CHECK(unit.info().spacing == glm::vec3(1.0f));
+  CHECK(unit.info().worldMax() == glm::vec3(11.0f, 9.0f, 7.0f));
+  CHECK(parseSpacing("1,2.5,0.5", "--spacing") == glm::vec3(1.0f, 2.5f, 0.5f));
+  for (const char* bad : {"1,1", "1,1,0", "1,-1,1", "1,nan,1", "1,1,1x", "", "a,b,c"})
+    CHECK_THROWS_WITH_AS(parseSpacing(bad, "--spacing"), doctest::Contains("--spacing"), Error);
+  CHECK_THROWS_AS(RespacedSource(test::makeBlobs(glm::ivec3(4)), glm::vec3(1.0f, 0.0f, 1.0f)), Error);
 }
 
 TEST_CASE("every paper figure carries its source") {
