@@ -171,8 +171,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     // Keep only the rectangle the brick's rays reached: the pixels around it are empty ("over"
     // with an empty pixel changes nothing), and with every node's partial image alive at once
     // before compositing, those margins were most of a frame's memory at large P.
-    const Rect content = partial.opaqueBounds();
-    if (content != partial.rect()) partial = partial.crop(content);
+    partial = trimToContent(std::move(partial));
     report.renderSeconds = counters.seconds;
     report.rays = counters.rays;
     report.samples = counters.samples;

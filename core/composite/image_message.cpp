@@ -66,7 +66,7 @@ Image mergeImages(Image mine, Image theirs, bool theirsInFront, std::int64_t& pi
   return merged;
 }
 
-Image trimToContent(const Image& image) {
+Image trimToContent(Image image) {
   const Rect content = image.opaqueBounds();
   if (content == image.rect()) return image;
   return image.crop(content);

@@ -18,7 +18,8 @@ Image imageFromMessage(Message& message);
 //! Composite of `mine` and `theirs` over the union of their rects; `theirsInFront` gives the
 //! order. `pixels` receives the number of pixels blended.
 Image mergeImages(Image mine, Image theirs, bool theirsInFront, std::int64_t& pixels);
-//! For sparse compositing: the image cut down to the bounding rectangle of its non-empty pixels.
-Image trimToContent(const Image& image);
+//! The image cut down to the bounding rectangle of its non-empty pixels (exact: "over" with an
+//! empty pixel changes nothing). Used for sparse messages and for each node's partial image.
+Image trimToContent(Image image);
 
 }  // namespace kdswap

@@ -25,7 +25,7 @@ Tile Sequential::compose(Image image, const Rect& frame, const VisibilityOrder& 
     image = mergeImages(std::move(image), imageFromMessage(in), true, pixels);
   }
   if (next >= 0) {
-    comm.send(next, kChainTag, imageToMessage(options_.sparse ? trimToContent(image) : std::move(image)));
+    comm.send(next, kChainTag, imageToMessage(options_.sparse ? trimToContent(std::move(image)) : std::move(image)));
     phases.endPhase(Rect{}, Image{}, pixels);
     return Tile{};
   }
