@@ -2,6 +2,7 @@
 // holds the whole volume, and the traversal is a valid visibility order for any view.
 #include <doctest/doctest.h>
 
+#include <cstring>
 #include <random>
 
 #include "core/camera/camera.h"
@@ -55,7 +56,7 @@ TEST_CASE("a brick keeps values and gradients only where its samples reach, and 
     const VoxelBox received = Brick::storedBoxFor(owned, dims);
     std::vector<float> raw(std::size_t(received.count()));
     volume->read(received, raw.data());
-    const Brick brick(owned, dims, volume->info().spacing, raw);
+    const Brick brick(owned, dims, volume->info().spacing, raw, Brick::Shipping::Yes);
     CHECK(brick.stored() == VoxelBox{owned.lo, owned.hi + 1});  // samples in [lo, hi) touch voxels lo..hi
     CHECK(brick.storedValues() == raw);                          // shipping loses nothing
     const Brick rebuilt(owned, dims, volume->info().spacing, brick.storedValues());
@@ -69,6 +70,11 @@ TEST_CASE("a brick keeps values and gradients only where its samples reach, and 
         }
     CHECK(differing == 0);
     CHECK(brick.bytes() < std::uint64_t(received.count()) * sizeof(Voxel));
+    // A brick that stays home drops the outer ghost layer and renders from identical voxels.
+    const Brick home(owned, dims, volume->info().spacing, raw);
+    CHECK_FALSE(home.shippable());
+    CHECK(home.bytes() + (received.count() - brick.stored().count()) * sizeof(float) == brick.bytes());
+    CHECK(std::memcmp(home.voxelData(), brick.voxelData(), std::size_t(brick.stored().count()) * sizeof(Voxel)) == 0);
   }
 }
 

@@ -87,7 +87,8 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
     throw Error("node " + std::to_string(comm.rank()) + ": brick message holds the wrong number of voxels");
   node.rank = comm.rank();
   if (m.header.size() == 10)
-    node.pieces.insert_or_assign(int(m.header[9]), Brick(owned, dims, spacing, std::move(m.payload)));
+    node.pieces.insert_or_assign(int(m.header[9]),
+                                 Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes));
   else
     node.brick = Brick(owned, dims, spacing, std::move(m.payload));
 }

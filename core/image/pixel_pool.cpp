@@ -2,6 +2,7 @@
 // frame, each for megabytes, so the lock is never contended for long).
 #include "core/image/pixel_pool.h"
 
+#include <algorithm>
 #include <mutex>
 
 namespace kdswap::pixel_pool {
@@ -46,6 +47,19 @@ std::vector<float> take(std::size_t floats) {
       p.free[best] = std::move(p.free.back());
       p.free.pop_back();
       p.bytes -= out.capacity() * sizeof(float);
+    } else {
+      // A miss allocates fresh memory: first hand back idle buffers of at least that size, so the
+      // new buffer takes their place instead of adding to the process's peak.
+      std::size_t released = 0;
+      while (!p.free.empty() && released < floats) {
+        auto largest = std::max_element(p.free.begin(), p.free.end(),
+                                        [](const auto& a, const auto& b) { return a.capacity() < b.capacity(); });
+        released += largest->capacity();
+        p.bytes -= largest->capacity() * sizeof(float);
+        std::vector<float>().swap(*largest);
+        *largest = std::move(p.free.back());
+        p.free.pop_back();
+      }
     }
   }
   out.clear();

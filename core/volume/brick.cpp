@@ -32,6 +32,7 @@ VoxelBox Brick::ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims) {
 }
 
 std::vector<float> Brick::storedValues() const {
+  KDSWAP_CHECK(shippable() || owned_.empty());
   std::vector<float> values;
   values.reserve(std::size_t(received_.count()));
   std::size_t next = 0;
@@ -42,8 +43,14 @@ std::vector<float> Brick::storedValues() const {
   return values;
 }
 
-Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw)
-    : owned_(owned), stored_(keptBoxFor(owned)), received_(storedBoxFor(owned, dims)), dims_(dims), spacing_(spacing) {
+Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw,
+             Shipping shipping)
+    : owned_(owned),
+      stored_(keptBoxFor(owned)),
+      received_(storedBoxFor(owned, dims)),
+      dims_(dims),
+      spacing_(spacing),
+      shipping_(shipping) {
   if (owned_.empty()) return;
   KDSWAP_CHECK_EQ(raw.size(), std::size_t(received_.count()));
   const glm::ivec3 r = received_.size();
@@ -70,11 +77,13 @@ Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spa
           out.gradient[a] = (at(hi.x, hi.y, hi.z) - at(lo.x, lo.y, lo.z)) / span;
         }
       }
-  for (int z = received_.lo.z; z < received_.hi.z; ++z)
-    for (int y = received_.lo.y; y < received_.hi.y; ++y)
-      for (int x = received_.lo.x; x < received_.hi.x; ++x)
-        if (!stored_.contains(glm::ivec3(x, y, z))) shell_.push_back(at(x, y, z));
-  shell_.shrink_to_fit();
+  if (shipping_ == Shipping::Yes) {
+    for (int z = received_.lo.z; z < received_.hi.z; ++z)
+      for (int y = received_.lo.y; y < received_.hi.y; ++y)
+        for (int x = received_.lo.x; x < received_.hi.x; ++x)
+          if (!stored_.contains(glm::ivec3(x, y, z))) shell_.push_back(at(x, y, z));
+    shell_.shrink_to_fit();
+  }
   buildCells();
 }
 

@@ -3,7 +3,7 @@
 // them: the owned voxels, the one replicated boundary layer that trilinear interpolation reaches
 // across a cut, and one more ghost layer so its central-difference gradients equal the whole
 // volume's. Gradients are precomputed per voxel (memory for time, as the paper does); once they
-// are, the outer ghost layer is only kept as plain values, for shipping the brick on.
+// are, the outer ghost layer is dropped, or kept as plain values when the brick may be shipped on.
 #pragma once
 
 #include <cstdint>
@@ -24,9 +24,14 @@ struct Voxel {
 
 class Brick {
  public:
+  //! Whether the brick can be shipped to another node (over-decomposition): only then does it keep
+  //! the outer ghost layer, which its own samples never touch (~2% of a 64^3 brick's memory).
+  enum class Shipping { No, Yes };
+
   Brick() = default;
   //! `raw` holds the voxels of storedBoxFor(owned, dims) (x fastest); they are consumed.
-  Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw);
+  Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw,
+        Shipping shipping = Shipping::No);
 
   //! Voxel indices a brick owning `owned` must receive: [lo - 1, hi + 1] clipped to the volume.
   static VoxelBox storedBoxFor(const VoxelBox& owned, const glm::ivec3& dims);
@@ -54,8 +59,10 @@ class Brick {
   std::size_t strideZ() const { return strideZ_; }
 
   //! The scalar values of storedBoxFor(owned, dims) (x fastest): what the brick was built from, so
-  //! a node can ship its brick to another (over-decomposition) and the receiver rebuilds identical voxels.
+  //! a node can ship its brick to another (over-decomposition) and the receiver rebuilds identical
+  //! voxels. Only for a brick built with Shipping::Yes.
   std::vector<float> storedValues() const;
+  bool shippable() const { return shipping_ == Shipping::Yes; }
 
   //! Bytes of this node's private memory held by the brick.
   std::uint64_t bytes() const {
@@ -78,7 +85,8 @@ class Brick {
   glm::vec3 spacing_{1.0f};
   std::size_t strideY_ = 0, strideZ_ = 0;
   std::vector<Voxel> voxels_;
-  std::vector<float> shell_;  //!< values of received_ outside stored_, in received_'s order
+  std::vector<float> shell_;  //!< Shipping::Yes: values of received_ outside stored_, in received_'s order
+  Shipping shipping_ = Shipping::No;
   glm::ivec3 cellLo_{0}, cellCount_{0};
   std::vector<glm::vec2> cellRanges_;  //!< (min, max) per macro cell, x fastest
 
