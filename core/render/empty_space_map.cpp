@@ -63,6 +63,7 @@ EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, flo
   visibleLo_ = glm::max(glm::vec3((lo + c0) << Brick::kCellShift), glm::vec3(brick.owned().lo));
   visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << Brick::kCellShift), glm::vec3(brick.owned().hi));
   reach_ = chessboardDistance(std::move(invisible), n);
+  reach_.resize(reach_.size() + kReachPadding, 0);
 }
 
 }  // namespace kdswap

@@ -24,6 +24,10 @@ class EmptySpaceMap {
   //! 0 when a sample in the cell can be visible. Otherwise n >= 1: every cell within n - 1 of this
   //! one along each axis (a cube of 2n - 1 cells) is invisible, as far as it lies in the brick.
   std::uint8_t reach(std::size_t cellIndex) const { return reach_[cellIndex]; }
+  //! All cells' reach, x fastest, followed by kReachPadding zeros (a SIMD gather reads 4 bytes).
+  const std::uint8_t* reachData() const { return reach_.data(); }
+  static constexpr std::size_t kReachPadding = 3;
+  const glm::ivec3& cellCount() const { return cellCount_; }
   std::size_t cellIndex(const glm::ivec3& cell) const {  //!< cell relative to the brick's first
     return (std::size_t(cell.z) * cellCount_.y + cell.y) * cellCount_.x + cell.x;
   }

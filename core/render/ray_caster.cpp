@@ -1,6 +1,6 @@
-// Ray casting of one brick. [Sections] ray setup (clip to the owned box) | sample loop
-// (trilinear value and gradient, transfer function, Phong, front-to-back over, early termination)
-// | tiles over the brick's screen rectangle.
+// Ray casting of one brick. [Sections] ray setup (clip to the owned box, find the run of owned
+// lattice indices) | tiles over the brick's screen rectangle. The sample loop itself is the ray
+// march (ray_march.h: scalar reference or AVX2, equal bit for bit).
 #include "core/render/ray_caster.h"
 
 #include <algorithm>
@@ -22,7 +22,6 @@ namespace kdswap {
 namespace {
 
 constexpr int kTileSize = 16;
-constexpr int kSpecularEntries = 256;
 
 }  // namespace
 
@@ -34,9 +33,28 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
       scale_(normalisingScaleBias(valueRange).x),
       bias_(normalisingScaleBias(valueRange).y),
       emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace),
-      occlusion_(occlusion) {
+      occlusion_(occlusion),
+      march_{ShadingParameters{}, VoxelAddressing(brick)},
+      // The SIMD march indexes voxels with 32-bit offsets.
+      marchFunction_(brick.stored().count() < (std::int64_t(1) << 31) ? selectedMarchFunction() : &marchScalar) {
   specular_.resize(kSpecularEntries + 1);
   for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
+  ShadingParameters& shading = march_.shading;
+  shading.table = &table_;
+  shading.scale = scale_, shading.bias = bias_;
+  shading.shading = settings.shading;
+  shading.ambient = settings.ambient, shading.diffuse = settings.diffuse, shading.specular = settings.specular;
+  shading.specularTable = specular_.data();
+  march_.storedLo = brick.stored().lo;
+  march_.reach = emptySpace_.reachData();
+  march_.cellLo = brick.cellLo();
+  march_.cellCount = emptySpace_.cellCount();
+  march_.lo = glm::vec3(brick.owned().lo), march_.hi = glm::vec3(brick.owned().hi);
+  march_.stopAt = settings.earlyTermination;
+}
+
+void RayCaster::useMarch(MarchFunction march) {
+  if (march) marchFunction_ = march;
 }
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedFrom) const {
@@ -90,66 +108,13 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
   while (kFirst <= kLast && !owned(samplePoint(kFirst))) ++kFirst;
   while (kLast >= kFirst && !owned(samplePoint(kLast))) --kLast;
 
-  const glm::vec3 toLight = -ray.direction;  // light at the eye
-  const bool shading = settings_.shading;
-  const float ka = settings_.ambient, kd = settings_.diffuse, ks = settings_.specular;
-  const float stopAt = settings_.earlyTermination;
-  const float scale = scale_, bias = bias_;
-  const TransferTable& table = table_;
-  const EmptySpaceMap& emptySpace = emptySpace_;
-  const VoxelAddressing voxels(brick_);
-
-  const glm::ivec3 cellLo = brick_.cellLo();
-  const glm::vec3 inverseD = 1.0f / d;  // used only on axes with d != 0
-  const float* specular = specular_.data();
-  float r = 0, g = 0, b = 0, alpha = 0;
+  MarchContext context = march_;
+  context.shading.toLight = -ray.direction;  // light at the eye
+  const RaySegment segment{o, d, 1.0f / d, step, phase, kFirst, kLast};  // 1 / d: used only where d != 0
   std::uint64_t samples = 0;
-  std::size_t lastJumpedCell = std::size_t(-1);
-  for (long k = kFirst; k <= kLast; ++k) {
-    const glm::vec3 p = samplePoint(k);
-    const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));  // p >= 0: truncation is floor
-    const glm::ivec3 c = (floor >> Brick::kCellShift) - cellLo;
-    const std::size_t cellIndex = emptySpace.cellIndex(c);
-    if (const int reach = emptySpace.reach(cellIndex)) {
-      if (cellIndex == lastJumpedCell) continue;  // landed just short of the exit: step on
-      lastJumpedCell = cellIndex;
-      // Jump to just before the ray leaves the invisible cube of cells around this one; samples
-      // there are all invisible (a cube is convex: the ray stays inside it until it exits).
-      const glm::vec3 cLo = glm::max(glm::vec3((c + cellLo - (reach - 1)) << Brick::kCellShift), lo);
-      const glm::vec3 cHi = glm::min(glm::vec3((c + cellLo + reach) << Brick::kCellShift), hi);
-      float tExit = std::numeric_limits<float>::max();
-      for (int a = 0; a < 3; ++a)
-        if (d[a] != 0.0f) tExit = std::min(tExit, ((d[a] > 0.0f ? cHi[a] : cLo[a]) - o[a]) * inverseD[a]);
-      const long resume = long(std::floor(tExit / step - phase)) - 1;  // one early: rounding-safe
-      if (resume > k) k = resume;
-      continue;
-    }
-    ++samples;
-    const TrilinearCell cell(voxels, p, floor);
-    const TrilinearCell::Lanes both = cell.interpolate();
-    const float value = both[0];
-    const glm::vec4 tf = table.lookup(value * scale + bias);
-    if (tf.a <= 0.0f) continue;
-    glm::vec3 colour(tf.r, tf.g, tf.b);
-    if (shading) {
-      const glm::vec3 grad(both[1], both[2], both[3]);
-      const float len2 = glm::dot(grad, grad);
-      float lambert = 1.0f;  // no gradient (flat region): lit as if facing the light
-      if (len2 > 0.0f) lambert = std::fabs(glm::dot(grad, toLight)) / std::sqrt(len2);
-      const float fs = std::min(lambert, 1.0f) * float(kSpecularEntries);
-      const int is = std::min(int(fs), kSpecularEntries - 1);
-      const float highlight = ks * (specular[is] + (fs - float(is)) * (specular[is + 1] - specular[is]));
-      colour = glm::min(colour * (ka + kd * lambert) + highlight, glm::vec3(1.0f));
-    }
-    const float w = (1.0f - alpha) * tf.a;
-    r += w * colour.r;
-    g += w * colour.g;
-    b += w * colour.b;
-    alpha += w;
-    if (alpha >= stopAt) break;  // early ray termination
-  }
+  const Rgba colour = marchFunction_(context, segment, samples);
   counters.samples += samples;
-  return Rgba{r, g, b, alpha};
+  return colour;
 }
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {

@@ -14,6 +14,7 @@
 #include "core/render/occlusion_map.h"
 #include "core/image/image.h"
 #include "core/render/render_settings.h"
+#include "core/render/ray_march.h"
 #include "core/transfer/transfer_function.h"
 #include "core/volume/brick.h"
 
@@ -42,6 +43,9 @@ class RayCaster {
   //! samples with lattice index below `occludedFrom`.
   Rgba castRay(const Ray& ray, RenderCounters& counters, long occludedFrom = OcclusionGrid::kNever) const;
 
+  //! Replaces the sample loop (tests compare the scalar and SIMD marches); null keeps the current one.
+  void useMarch(MarchFunction march);
+
  private:
   const Brick& brick_;
   const TransferTable& table_;
@@ -50,6 +54,8 @@ class RayCaster {
   EmptySpaceMap emptySpace_;     //!< invisible macro cells under this transfer function
   const OcclusionMap* occlusion_;
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
+  MarchContext march_;           //!< the brick's constants for the sample loop
+  MarchFunction marchFunction_;  //!< scalar or SIMD: equal results
 };
 
 }  // namespace kdswap

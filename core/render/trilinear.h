@@ -33,9 +33,12 @@ struct TrilinearCell {
   TrilinearCell(const Brick& brick, const glm::vec3& p)
       : TrilinearCell(VoxelAddressing(brick), p, glm::ivec3(int(p.x), int(p.y), int(p.z))) {}
   //! `floor` = (int) p: p >= 0, so truncation is floor. The ray caster has it already.
-  TrilinearCell(const VoxelAddressing& at, const glm::vec3& p, const glm::ivec3& floor) : sy(at.sy), sz(at.sz) {
+  TrilinearCell(const VoxelAddressing& at, const glm::vec3& p, const glm::ivec3& floor)
+      : TrilinearCell(at.data + (at.origin + floor.z * at.sz + floor.y * at.sy + floor.x), at.sy, at.sz, p, floor) {}
+  //! `corner` = the voxel at `floor`; sy, sz its brick's strides.
+  TrilinearCell(const Voxel* corner, std::ptrdiff_t sy, std::ptrdiff_t sz, const glm::vec3& p, const glm::ivec3& floor)
+      : v(corner), sy(sy), sz(sz) {
     const float fx = p.x - float(floor.x), fy = p.y - float(floor.y), fz = p.z - float(floor.z);
-    v = at.data + (at.origin + floor.z * sz + floor.y * sy + floor.x);
     const float gx = 1.0f - fx, gy = 1.0f - fy, gz = 1.0f - fz;
     w[0] = gx * gy * gz, w[1] = fx * gy * gz, w[2] = gx * fy * gz, w[3] = fx * fy * gz;
     w[4] = gx * gy * fz, w[5] = fx * gy * fz, w[6] = gx * fy * fz, w[7] = fx * fy * fz;

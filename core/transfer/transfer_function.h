@@ -75,6 +75,8 @@ class TransferTable {
     const float t = f - float(i);
     return entries_[i] + t * (entries_[j] - entries_[i]);
   }
+  //! The kSize entries lookup() interpolates (for the SIMD shader, which must match lookup exactly).
+  const glm::vec4* entries() const { return entries_.data(); }
   //! Largest corrected opacity over normalised scalars in [s0, s1].
   float maxAlpha(float s0, float s1) const;
   //! Smallest corrected opacity lookup(s) can give for s in [s0, s1] (conservative by one entry on

@@ -1,0 +1,39 @@
+// Scalar ray march (the reference) and the choice of march.
+#include "core/render/ray_march.h"
+
+#include <cstdlib>
+#include <cstring>
+
+namespace kdswap {
+
+Rgba marchScalar(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
+  FrontToBack result;
+  std::size_t lastJumpedCell = std::size_t(-1);
+  for (long k = s.first; k <= s.last; ++k) {
+    const glm::vec3 p = s.point(k);
+    const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));  // p >= 0: truncation is floor
+    const glm::ivec3 c = (floor >> Brick::kCellShift) - m.cellLo;
+    const std::size_t cell = m.cellIndex(c);
+    if (const int reach = m.reach[cell]) {
+      if (cell == lastJumpedCell) continue;  // landed just short of the exit: step on
+      lastJumpedCell = cell;
+      k = std::max(k, s.resumeAfterEmpty(m, c, reach));
+      continue;
+    }
+    ++samples;
+    if (result.add(shadeSample(m.shading, m.voxels, p, floor), m.stopAt)) break;
+  }
+  return result.rgba();
+}
+
+MarchFunction selectedMarchFunction() {
+  static const MarchFunction chosen = [] {
+    const char* simd = std::getenv("KDSWAP_SIMD");
+    const bool scalarOnly = simd && std::strcmp(simd, "scalar") == 0;
+    const MarchFunction avx2 = avx2MarchFunction();
+    return (avx2 && !scalarOnly) ? avx2 : &marchScalar;
+  }();
+  return chosen;
+}
+
+}  // namespace kdswap

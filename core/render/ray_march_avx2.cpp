@@ -1,0 +1,258 @@
+// AVX2 ray march: eight consecutive lattice samples at once. [Sections] shading of eight samples
+// | the march (empty-space test per group of eight, fast path when all are visible).
+// Each step is the scalar reference's operation (ray_march.cpp, sample_shader.h) in the same
+// order; nothing is fused (this file enables AVX2 only, not FMA, and the build compiles with
+// -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
+// bit. A sample's eight corner voxels are 4-float vectors (value, gradient), so interpolation runs
+// per sample on 4 lanes, as TrilinearCell does, and is then transposed into one register per
+// quantity; everything after it runs on eight samples per instruction.
+#include "core/render/ray_march.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+
+namespace kdswap {
+namespace {
+
+// (Helpers are functions, not lambdas: a lambda does not inherit its enclosing function's target.)
+#define KDSWAP_AVX2 __attribute__((target("avx2")))
+
+constexpr int kLanes = 8;
+
+// ---- [Shading of eight samples] -----------------------------------------------------------------
+
+KDSWAP_AVX2 inline __m128 weighted(const float (*w)[kLanes], int corner, int lane, const Voxel* voxel) {
+  return _mm_mul_ps(_mm_set1_ps(w[corner][lane]), _mm_loadu_ps(&voxel->value));
+}
+
+//! Value and gradient of one sample: corners 000 100 010 110 001 101 011 111, summed in that order.
+KDSWAP_AVX2 inline __m128 interpolate(const Voxel* v, std::ptrdiff_t sy, std::ptrdiff_t sz, const float (*w)[kLanes],
+                                       int lane) {
+  __m128 sum = _mm_add_ps(weighted(w, 0, lane, v), weighted(w, 1, lane, v + 1));
+  sum = _mm_add_ps(sum, weighted(w, 2, lane, v + sy));
+  sum = _mm_add_ps(sum, weighted(w, 3, lane, v + sy + 1));
+  sum = _mm_add_ps(sum, weighted(w, 4, lane, v + sz));
+  sum = _mm_add_ps(sum, weighted(w, 5, lane, v + sz + 1));
+  sum = _mm_add_ps(sum, weighted(w, 6, lane, v + sz + sy));
+  return _mm_add_ps(sum, weighted(w, 7, lane, v + sz + sy + 1));
+}
+
+//! min(1, c * light + highlight), as glm::min(colour * light + highlight, vec3(1)).
+KDSWAP_AVX2 inline __m256 lit(__m256 c, __m256 light, __m256 highlight) {
+  return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(_mm256_mul_ps(c, light), highlight));
+}
+
+struct Shaded8 {
+  alignas(32) float r[kLanes], g[kLanes], b[kLanes], a[kLanes];
+};
+
+//! shadeSample for eight samples at points (px, py, pz) with voxels corner[j] at their floors.
+KDSWAP_AVX2 void shade8(const MarchContext& m, __m256 px, __m256 py, __m256 pz, const Voxel* const* corner,
+                        Shaded8& out) {
+  const ShadingParameters& params = m.shading;
+  const __m256 one = _mm256_set1_ps(1.0f);
+  // p >= 0: truncation is floor.
+  const __m256 fx = _mm256_sub_ps(px, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(px)));
+  const __m256 fy = _mm256_sub_ps(py, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(py)));
+  const __m256 fz = _mm256_sub_ps(pz, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(pz)));
+  const __m256 gx = _mm256_sub_ps(one, fx), gy = _mm256_sub_ps(one, fy), gz = _mm256_sub_ps(one, fz);
+  alignas(32) float w[8][kLanes];
+  _mm256_store_ps(w[0], _mm256_mul_ps(_mm256_mul_ps(gx, gy), gz));
+  _mm256_store_ps(w[1], _mm256_mul_ps(_mm256_mul_ps(fx, gy), gz));
+  _mm256_store_ps(w[2], _mm256_mul_ps(_mm256_mul_ps(gx, fy), gz));
+  _mm256_store_ps(w[3], _mm256_mul_ps(_mm256_mul_ps(fx, fy), gz));
+  _mm256_store_ps(w[4], _mm256_mul_ps(_mm256_mul_ps(gx, gy), fz));
+  _mm256_store_ps(w[5], _mm256_mul_ps(_mm256_mul_ps(fx, gy), fz));
+  _mm256_store_ps(w[6], _mm256_mul_ps(_mm256_mul_ps(gx, fy), fz));
+  _mm256_store_ps(w[7], _mm256_mul_ps(_mm256_mul_ps(fx, fy), fz));
+
+  // Lanes j and j + 4 share a register; a 4x4 transpose in each half then gives one register per
+  // quantity with the lanes in order.
+  const std::ptrdiff_t sy = m.voxels.sy, sz = m.voxels.sz;
+  __m256 t[4];
+  for (int j = 0; j < 4; ++j)
+    t[j] = _mm256_set_m128(interpolate(corner[j + 4], sy, sz, w, j + 4), interpolate(corner[j], sy, sz, w, j));
+  const __m256 u0 = _mm256_unpacklo_ps(t[0], t[1]), u1 = _mm256_unpackhi_ps(t[0], t[1]);
+  const __m256 u2 = _mm256_unpacklo_ps(t[2], t[3]), u3 = _mm256_unpackhi_ps(t[2], t[3]);
+  const __m256 value = _mm256_shuffle_ps(u0, u2, _MM_SHUFFLE(1, 0, 1, 0));
+  const __m256 gradX = _mm256_shuffle_ps(u0, u2, _MM_SHUFFLE(3, 2, 3, 2));
+  const __m256 gradY = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(1, 0, 1, 0));
+  const __m256 gradZ = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(3, 2, 3, 2));
+
+  // TransferTable::lookup: clamp (NaN to 0), then linear between entries i and min(i + 1, last).
+  const float last = float(TransferTable::kSize - 1);
+  const __m256 s = _mm256_add_ps(_mm256_mul_ps(value, _mm256_set1_ps(params.scale)), _mm256_set1_ps(params.bias));
+  __m256 f = _mm256_mul_ps(s, _mm256_set1_ps(last));
+  f = _mm256_and_ps(f, _mm256_cmp_ps(f, _mm256_setzero_ps(), _CMP_GE_OQ));
+  f = _mm256_blendv_ps(f, _mm256_set1_ps(last), _mm256_cmp_ps(f, _mm256_set1_ps(last), _CMP_GT_OQ));
+  const __m256i i0 = _mm256_cvttps_epi32(f);
+  const __m256i i1 =
+      _mm256_min_epi32(_mm256_add_epi32(i0, _mm256_set1_epi32(1)), _mm256_set1_epi32(TransferTable::kSize - 1));
+  const __m256 frac = _mm256_sub_ps(f, _mm256_cvtepi32_ps(i0));
+  const float* entries = &params.table->entries()->r;
+  const __m256i at0 = _mm256_slli_epi32(i0, 2), at1 = _mm256_slli_epi32(i1, 2);  // 4 floats per entry
+  __m256 tf[4];
+  for (int c = 0; c < 4; ++c) {
+    const __m256 e0 = _mm256_i32gather_ps(entries + c, at0, 4), e1 = _mm256_i32gather_ps(entries + c, at1, 4);
+    tf[c] = _mm256_add_ps(e0, _mm256_mul_ps(frac, _mm256_sub_ps(e1, e0)));
+  }
+  _mm256_store_ps(out.a, tf[3]);
+  if (!params.shading) {
+    _mm256_store_ps(out.r, tf[0]), _mm256_store_ps(out.g, tf[1]), _mm256_store_ps(out.b, tf[2]);
+    return;
+  }
+  // Lambert term |g.l| / |g| (1 where the gradient is 0); dot products summed x + y + z, as glm::dot.
+  const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, gradX), _mm256_mul_ps(gradY, gradY)),
+                                    _mm256_mul_ps(gradZ, gradZ));
+  const __m256 dotL = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, _mm256_set1_ps(params.toLight.x)),
+                                                  _mm256_mul_ps(gradY, _mm256_set1_ps(params.toLight.y))),
+                                    _mm256_mul_ps(gradZ, _mm256_set1_ps(params.toLight.z)));
+  const __m256 absDot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dotL);
+  const __m256 lambert = _mm256_blendv_ps(one, _mm256_div_ps(absDot, _mm256_sqrt_ps(len2)),
+                                          _mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ));
+  // Specular table, linear between entries; std::min(x, 1.0f) is minps(1, x).
+  const __m256 fs = _mm256_mul_ps(_mm256_min_ps(one, lambert), _mm256_set1_ps(float(kSpecularEntries)));
+  const __m256i is = _mm256_min_epi32(_mm256_cvttps_epi32(fs), _mm256_set1_epi32(kSpecularEntries - 1));
+  const __m256 s0 = _mm256_i32gather_ps(params.specularTable, is, 4);
+  const __m256 s1 = _mm256_i32gather_ps(params.specularTable + 1, is, 4);
+  const __m256 highlight = _mm256_mul_ps(
+      _mm256_set1_ps(params.specular),
+      _mm256_add_ps(s0, _mm256_mul_ps(_mm256_sub_ps(fs, _mm256_cvtepi32_ps(is)), _mm256_sub_ps(s1, s0))));
+  const __m256 light =
+      _mm256_add_ps(_mm256_set1_ps(params.ambient), _mm256_mul_ps(_mm256_set1_ps(params.diffuse), lambert));
+  _mm256_store_ps(out.r, lit(tf[0], light, highlight));
+  _mm256_store_ps(out.g, lit(tf[1], light, highlight));
+  _mm256_store_ps(out.b, lit(tf[2], light, highlight));
+}
+
+// ---- [The march] --------------------------------------------------------------------------------
+
+//! Visible samples collected one by one (around empty space), shaded eight at a time.
+struct PendingSamples {
+  alignas(32) float x[kLanes], y[kLanes], z[kLanes];
+  const Voxel* corner[kLanes];
+  int size = 0;
+};
+
+//! Composites the first n shaded samples in order; true when the ray is done.
+KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopAt,
+                                         std::uint64_t& samples) {
+  for (int j = 0; j < n; ++j) {
+    ++samples;
+    if (result.add(ShadedSample{s.r[j], s.g[j], s.b[j], s.a[j]}, stopAt)) return true;
+  }
+  return false;
+}
+
+KDSWAP_AVX2 bool flush(const MarchContext& m, PendingSamples& pending, FrontToBack& result, std::uint64_t& samples) {
+  const int n = pending.size;
+  if (n == 0) return false;
+  for (int j = n; j < kLanes; ++j)  // unused lanes repeat the last sample: loads stay in the brick
+    pending.x[j] = pending.x[n - 1], pending.y[j] = pending.y[n - 1], pending.z[j] = pending.z[n - 1],
+    pending.corner[j] = pending.corner[n - 1];
+  pending.size = 0;
+  Shaded8 shaded;
+  shade8(m, _mm256_load_ps(pending.x), _mm256_load_ps(pending.y), _mm256_load_ps(pending.z), pending.corner, shaded);
+  return compositeInOrder(result, shaded, n, m.stopAt, samples);
+}
+
+KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
+  FrontToBack result;
+  PendingSamples pending;
+  std::size_t lastJumpedCell = std::size_t(-1);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256 ox = _mm256_set1_ps(s.origin.x), oy = _mm256_set1_ps(s.origin.y), oz = _mm256_set1_ps(s.origin.z);
+  const __m256 dx = _mm256_set1_ps(s.direction.x), dy = _mm256_set1_ps(s.direction.y),
+               dz = _mm256_set1_ps(s.direction.z);
+  const __m256 phase = _mm256_set1_ps(s.phase), step = _mm256_set1_ps(s.step);
+  const __m256i cellLoX = _mm256_set1_epi32(m.cellLo.x), cellLoY = _mm256_set1_epi32(m.cellLo.y),
+                cellLoZ = _mm256_set1_epi32(m.cellLo.z);
+  const __m256i countX = _mm256_set1_epi32(m.cellCount.x), countY = _mm256_set1_epi32(m.cellCount.y);
+  const __m256i loX = _mm256_set1_epi32(m.storedLo.x), loY = _mm256_set1_epi32(m.storedLo.y),
+                loZ = _mm256_set1_epi32(m.storedLo.z);
+  const __m256i sy = _mm256_set1_epi32(int(m.voxels.sy)), sz = _mm256_set1_epi32(int(m.voxels.sz));
+  const Voxel* const data = m.voxels.data;
+
+  long k = s.first;
+  while (k <= s.last) {
+    const int n = int(std::min<long>(kLanes, s.last - k + 1));
+    // Points k .. k + 7 exactly as RaySegment::point computes them (k + j fits an int: it is a
+    // sample index along one ray).
+    const __m256 t =
+        _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(int(k)), lane)), phase), step);
+    const __m256 px = _mm256_add_ps(ox, _mm256_mul_ps(dx, t)), py = _mm256_add_ps(oy, _mm256_mul_ps(dy, t)),
+                 pz = _mm256_add_ps(oz, _mm256_mul_ps(dz, t));
+    const __m256i ix = _mm256_cvttps_epi32(px), iy = _mm256_cvttps_epi32(py), iz = _mm256_cvttps_epi32(pz);
+    const __m256i cx = _mm256_sub_epi32(_mm256_srai_epi32(ix, Brick::kCellShift), cellLoX);
+    const __m256i cy = _mm256_sub_epi32(_mm256_srai_epi32(iy, Brick::kCellShift), cellLoY);
+    const __m256i cz = _mm256_sub_epi32(_mm256_srai_epi32(iz, Brick::kCellShift), cellLoZ);
+    const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), lane);
+    const __m256i cell = _mm256_and_si256(  // lanes past the segment look at cell 0
+        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, countY), cy), countX), cx),
+        inSegment);
+    const __m256i reach = _mm256_and_si256(
+        _mm256_i32gather_epi32(reinterpret_cast<const int*>(m.reach), cell, 1), _mm256_set1_epi32(0xFF));
+    const int visible =
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()))) & ((1 << n) - 1);
+    const __m256i offset = _mm256_add_epi32(
+        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, loZ), sz), _mm256_mullo_epi32(_mm256_sub_epi32(iy, loY), sy)),
+        _mm256_sub_epi32(ix, loX));
+    alignas(32) int offsets[kLanes];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), offset);
+
+    if (visible == 0xFF) {  // eight visible samples in a row: shade them straight from registers
+      if (flush(m, pending, result, samples)) return result.rgba();
+      const Voxel* corner[kLanes];
+      for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
+      Shaded8 shaded;
+      shade8(m, px, py, pz, corner, shaded);
+      if (compositeInOrder(result, shaded, kLanes, m.stopAt, samples)) return result.rgba();
+      k += kLanes;
+      continue;
+    }
+    // Otherwise sample by sample, as the scalar march: visible ones wait in `pending`, the first
+    // invisible one jumps across its empty region.
+    alignas(32) float x[kLanes], y[kLanes], z[kLanes];
+    alignas(32) int cells[kLanes], reaches[kLanes], cxs[kLanes], cys[kLanes], czs[kLanes];
+    _mm256_store_ps(x, px), _mm256_store_ps(y, py), _mm256_store_ps(z, pz);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cells), cell);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(reaches), reach);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cxs), cx);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cys), cy);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(czs), cz);
+    long next = k + n;
+    for (int j = 0; j < n; ++j) {
+      if (reaches[j] == 0) {
+        PendingSamples& p = pending;
+        p.x[p.size] = x[j], p.y[p.size] = y[j], p.z[p.size] = z[j], p.corner[p.size] = data + offsets[j];
+        if (++p.size == kLanes && flush(m, pending, result, samples)) return result.rgba();
+        continue;
+      }
+      const std::size_t c = std::size_t(cells[j]);
+      if (c == lastJumpedCell) continue;  // landed just short of the exit: step on
+      lastJumpedCell = c;
+      next = std::max(k + j, s.resumeAfterEmpty(m, glm::ivec3(cxs[j], cys[j], czs[j]), reaches[j])) + 1;
+      break;
+    }
+    k = next;
+  }
+  flush(m, pending, result, samples);
+  return result.rgba();
+}
+
+}  // namespace
+
+MarchFunction avx2MarchFunction() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") ? &marchAvx2 : nullptr;
+}
+
+}  // namespace kdswap
+
+#else
+
+namespace kdswap {
+MarchFunction avx2MarchFunction() { return nullptr; }
+}  // namespace kdswap
+
+#endif
