@@ -42,8 +42,15 @@ KDSWAP_AVX2 inline __m256 lit(__m256 c, __m256 light, __m256 highlight) {
   return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(_mm256_mul_ps(c, light), highlight));
 }
 
+//! One channel of TransferTable::lookup: e0 + frac * (e1 - e0), entries 4 floats apart.
+KDSWAP_AVX2 inline __m256 tableChannel(const float* channel, __m256i at0, __m256i at1, __m256 frac) {
+  const __m256 e0 = _mm256_i32gather_ps(channel, at0, 4), e1 = _mm256_i32gather_ps(channel, at1, 4);
+  return _mm256_add_ps(e0, _mm256_mul_ps(frac, _mm256_sub_ps(e1, e0)));
+}
+
 struct Shaded8 {
   alignas(32) float r[kLanes], g[kLanes], b[kLanes], a[kLanes];
+  int contributing = 0;  //!< bit j: !(a[j] <= 0); colour is computed only when some bit is set
 };
 
 //! shadeSample for eight samples at points (px, py, pz) with voxels corner[j] at their floors.
@@ -92,11 +99,12 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, __m256 px, __m256 py, __m256 pz, 
   const float* entries = &params.table->entries()->r;
   const __m256i at0 = _mm256_slli_epi32(i0, 2), at1 = _mm256_slli_epi32(i1, 2);  // 4 floats per entry
   __m256 tf[4];
-  for (int c = 0; c < 4; ++c) {
-    const __m256 e0 = _mm256_i32gather_ps(entries + c, at0, 4), e1 = _mm256_i32gather_ps(entries + c, at1, 4);
-    tf[c] = _mm256_add_ps(e0, _mm256_mul_ps(frac, _mm256_sub_ps(e1, e0)));
-  }
+  // Opacity first: where no sample is visible (common in sparse data), colour is never used.
+  tf[3] = tableChannel(entries + 3, at0, at1, frac);
+  out.contributing = _mm256_movemask_ps(_mm256_cmp_ps(tf[3], _mm256_setzero_ps(), _CMP_NLE_UQ));  // !(a <= 0), as add()
   _mm256_store_ps(out.a, tf[3]);
+  if (out.contributing == 0) return;
+  for (int c = 0; c < 3; ++c) tf[c] = tableChannel(entries + c, at0, at1, frac);
   if (!params.shading) {
     _mm256_store_ps(out.r, tf[0]), _mm256_store_ps(out.g, tf[1]), _mm256_store_ps(out.b, tf[2]);
     return;
@@ -135,12 +143,17 @@ struct PendingSamples {
 };
 
 //! Composites the first n shaded samples in order; true when the ray is done.
+//! Samples with zero opacity change nothing (FrontToBack::add), so only contributing lanes are visited.
 KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopAt,
                                          std::uint64_t& samples) {
-  for (int j = 0; j < n; ++j) {
-    ++samples;
-    if (result.add(ShadedSample{s.r[j], s.g[j], s.b[j], s.a[j]}, stopAt)) return true;
+  for (int bits = s.contributing & ((1 << n) - 1); bits != 0; bits &= bits - 1) {
+    const int j = __builtin_ctz(bits);
+    if (result.add(ShadedSample{s.r[j], s.g[j], s.b[j], s.a[j]}, stopAt)) {
+      samples += std::uint64_t(j + 1);  // the scalar march counts up to the sample that ends the ray
+      return true;
+    }
   }
+  samples += std::uint64_t(n);
   return false;
 }
 
