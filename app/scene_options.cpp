@@ -10,6 +10,7 @@
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/reader.h"
+#include "core/volume/respaced_source.h"
 
 namespace kdswap {
 
@@ -59,6 +60,9 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--raw-type", o.rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
   cmd->add_option("--raw-endian", o.rawEndian, "Raw files: little or big")->capture_default_str();
   cmd->add_option("--raw-spacing", o.rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
+  cmd->add_option("--spacing", o.spacing,
+                  "Voxel spacing SX,SY,SZ instead of the data's, for any volume (e.g. 1,1,1 to compare with "
+                  "a renderer that ignores the header's spacing)");
   cmd->add_option("--size", o.size, "Image size WxH (1..16384 each)")->capture_default_str();
   cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees")->capture_default_str();
   cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii")->capture_default_str();
@@ -138,6 +142,7 @@ Scene buildScene(const SceneOptions& o) {
   } else {
     scene.source = openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset);
   }
+  if (!o.spacing.empty()) scene.source = std::make_unique<RespacedSource>(std::move(scene.source), parseSpacing(o.spacing, "--spacing"));
   const VolumeInfo& info = scene.source->info();
 
   FrameRequest& r = scene.request;

@@ -18,6 +18,7 @@ struct SceneOptions {
   std::string dataset;
   std::string volume;
   std::string rawDims, rawType, rawEndian = "little", rawSpacing;
+  std::string spacing;  //!< overrides the data's voxel spacing (any volume or data set)
   std::string size = "512x512";
   std::string view = "30,15";
   float distance = 2.5f, fov = 35.0f;

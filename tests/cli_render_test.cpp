@@ -86,7 +86,8 @@ TEST_CASE("bad options give one line on stderr and exit code 2") {
        {std::string("render --size 0x10"), std::string("render --size 20000x10"), std::string("render --size banana"),
         std::string("render --nodes 0"), std::string("render --nodes 5000"), std::string("render --no-such-option"),
         std::string("render --composite magic"), std::string("render --volume /no/such/file.nrrd"),
-        std::string("render --tf no-such-preset"), std::string("render --step 0"), std::string("render --view 10")}) {
+        std::string("render --tf no-such-preset"), std::string("render --step 0"), std::string("render --view 10"),
+        std::string("render --spacing 1,0,1"), std::string("render --spacing 1,2")}) {
     const Run run = runKdswap(args + out);
     CHECK_MESSAGE(run.code == 2, args);
     CHECK_MESSAGE(lineCount(run.err) == 1, args << " printed: " << run.err);
@@ -94,4 +95,24 @@ TEST_CASE("bad options give one line on stderr and exit code 2") {
   const Run unwritable = runKdswap("render --size 8x8 --out /no/such/folder/a.png");
   CHECK(unwritable.code == 2);
   CHECK(unwritable.err.find("/no/such/folder") != std::string::npos);
+}
+
+TEST_CASE("kdswap render --spacing overrides the data's voxel spacing") {
+  // A 24-voxel phantom stretched 3 times along z is taller on screen (z is up): more rows are lit.
+  const auto litRows = [](const std::string& extra) {
+    const std::string path = (workDir() / "spacing.exr").string();
+    const Run run = runKdswap("render --dataset phantom:24 --size 32x32 --view 90,0 --tf grayscale --out " + path + extra);
+    REQUIRE_MESSAGE(run.code == 0, run.err);
+    const Image image = readImage(path);
+    int rows = 0;
+    for (int y = 0; y < image.height(); ++y) {
+      bool lit = false;
+      for (int x = 0; x < image.width(); ++x) lit = lit || image.at(x, y).a > 0.05f;
+      rows += lit ? 1 : 0;
+    }
+    return rows;
+  };
+  const int plain = litRows(""), stretched = litRows(" --spacing 1,1,3");
+  CHECK(plain > 0);
+  CHECK(stretched > plain);
 }
