@@ -12,6 +12,7 @@
 #include "core/bench/statistics.h"
 #include "core/comm/inproc_network.h"
 #include "core/composite/registry.h"
+#include "core/render/ray_march.h"
 #include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "core/util/clock.h"
@@ -22,14 +23,16 @@ namespace kdswap {
 namespace {
 
 // [1] One whole-volume brick rendered on one thread.
-RayCastFigure castOnOneCore(const VolumeSource& source, const std::string& type, bool shaded, const MicroOptions& o) {
+RayCastFigure castOnOneCore(const VolumeSource& source, const std::string& type, bool shaded, MarchFunction march,
+                            const MicroOptions& o) {
   const Brick brick = wholeVolumeBrick(source);
   RenderSettings settings;
   settings.shading = shaded;
   settings.stepVoxels = 0.5f;
   const TransferFunction tf = loadTransferFunction(source.info().preset.empty() ? "grayscale" : source.info().preset);
   const TransferTable table(tf, settings.stepVoxels);
-  const RayCaster caster(brick, table, settings, resolveValueRange(settings, source.info()));
+  RayCaster caster(brick, table, settings, resolveValueRange(settings, source.info()));
+  caster.useMarch(march);
   const Camera camera(View{}, glm::vec3(0.0f), source.info().worldMax(), o.imageSize, o.imageSize);
   std::vector<double> rates;
   double samples = 0;
@@ -45,7 +48,7 @@ RayCastFigure castOnOneCore(const VolumeSource& source, const std::string& type,
       rates.push_back(t > 0 ? double(counters.samples) / t : 0.0);
     }
   });
-  return RayCastFigure{type, shaded, median(rates), samples};
+  return RayCastFigure{type, shaded, march == &marchScalar ? "scalar" : "avx2", median(rates), samples};
 }
 
 void fillSynthetic(Image& image, int seed) {
@@ -85,12 +88,16 @@ std::vector<RayCastFigure> measureRayCasting(const MicroOptions& o) {
   const std::string spec = "phantom:" + std::to_string(o.volumeSize);
   auto asFloat = openDataset(spec);
   QuantisedSource as8(openDataset(spec), 8), as16(openDataset(spec), 16);
+  // The march renders use (AVX2 where the CPU has it), and the scalar reference beside it.
+  std::vector<MarchFunction> marches{selectedMarchFunction()};
+  if (marches[0] != &marchScalar) marches.push_back(&marchScalar);
   std::vector<RayCastFigure> out;
-  for (bool shaded : {true, false}) {
-    out.push_back(castOnOneCore(as8, "uint8", shaded, o));
-    out.push_back(castOnOneCore(as16, "uint16", shaded, o));
-    out.push_back(castOnOneCore(*asFloat, "float32", shaded, o));
-  }
+  for (MarchFunction march : marches)
+    for (bool shaded : {true, false}) {
+      out.push_back(castOnOneCore(as8, "uint8", shaded, march, o));
+      out.push_back(castOnOneCore(as16, "uint16", shaded, march, o));
+      out.push_back(castOnOneCore(*asFloat, "float32", shaded, march, o));
+    }
   return out;
 }
 
@@ -224,8 +231,9 @@ std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeF
                 o.volumeSize, o.imageSize, o.imageSize, o.repeats);
   out += buf;
   for (const RayCastFigure& r : rays) {
-    std::snprintf(buf, sizeof buf, "  %-8s %-9s %8.2f Msamples/s   (%.2f M samples per image)\n", r.dataType.c_str(),
-                  r.shaded ? "shaded" : "unshaded", r.samplesPerSecond * 1e-6, r.samples * 1e-6);
+    std::snprintf(buf, sizeof buf, "  %-8s %-9s %-7s %8.2f Msamples/s   (%.2f M samples per image)\n",
+                  r.dataType.c_str(), r.shaded ? "shaded" : "unshaded", r.march.c_str(), r.samplesPerSecond * 1e-6,
+                  r.samples * 1e-6);
     out += buf;
   }
   out += "  note: bricks always hold float voxels + gradients (16 bytes); uint8/uint16 is the source data\n"
