@@ -56,18 +56,36 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
     // Rounded down, so the sum stays a lower bound of the optical depth.
     depth_[i] = a <= 0.0f ? 0.0f : (a >= 1.0f ? 1e6f : float(-std::log1p(-double(a)) * (1.0 - 1e-6)));
   }
+  // The box of cells that add depth: rays march only through it, since nothing outside counts.
+  // With none (a translucent transfer function), nothing can be culled: the grid is inactive and
+  // the per-frame map costs nothing.
+  glm::ivec3 lo(std::numeric_limits<int>::max()), hi(-1);
+  for (int z = 0; z < count_.z; ++z)
+    for (int y = 0; y < count_.y; ++y)
+      for (int x = 0; x < count_.x; ++x)
+        if (depth_[(std::size_t(z) * count_.y + y) * count_.x + x] > 0.0f) {
+          lo = glm::min(lo, glm::ivec3(x, y, z));
+          hi = glm::max(hi, glm::ivec3(x, y, z));
+        }
+  if (hi.x < 0) {
+    active_ = false;
+    depth_.clear();
+    return;
+  }
+  depthLo_ = glm::vec3(lo * kCell);
+  depthHi_ = glm::min(glm::vec3((hi + 1) * kCell), domainHi_);
 }
 
 long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float step, float phase) const {
   if (!active_ || !(step > 0.0f)) return kNever;
-  // The part of the ray inside the sample domain.
+  // The part of the ray inside the box of cells that add depth (samples elsewhere add none).
   float t0 = 0.0f, t1 = std::numeric_limits<float>::max();
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0.0f) {
-      if (o[a] < 0.0f || o[a] > domainHi_[a]) return kNever;
+      if (o[a] < depthLo_[a] || o[a] > depthHi_[a]) return kNever;
       continue;
     }
-    float ta = (0.0f - o[a]) / d[a], tb = (domainHi_[a] - o[a]) / d[a];
+    float ta = (depthLo_[a] - o[a]) / d[a], tb = (depthHi_[a] - o[a]) / d[a];
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);

@@ -33,7 +33,8 @@ struct CellRangeGrid {
 class OcclusionGrid {
  public:
   //! For one frame: the transfer table, the value mapping (normalised = value * scale + bias) and
-  //! the early-termination opacity. Inactive when early termination is off (stopAt >= 1).
+  //! the early-termination opacity. Inactive when early termination is off (stopAt >= 1) or no
+  //! cell can add opacity for certain (then nothing could ever be culled).
   OcclusionGrid(const CellRangeGrid& cells, const TransferTable& table, float scale, float bias, float stopAt);
 
   static constexpr long kNever = LONG_MAX;
@@ -47,6 +48,7 @@ class OcclusionGrid {
  private:
   glm::ivec3 count_{0};
   glm::vec3 domainHi_{0.0f};  //!< samples lie in [0, dims - 1) per axis
+  glm::vec3 depthLo_{0.0f}, depthHi_{0.0f};  //!< voxel box of the cells that add depth, within the domain
   //! Per cell: -ln(1 - smallest opacity a sample there can have); a sum over samples bounds the
   //! optical depth, so opacity >= 1 - exp(-sum).
   std::vector<float> depth_;
