@@ -3,8 +3,6 @@
 
 #include <cstdio>
 
-#include "core/bench/bench_grid.h"
-#include "core/bench/paper_tables.h"
 #include "core/transfer/presets.h"
 #include "core/volume/datasets/dataset.h"
 
@@ -27,6 +25,18 @@ std::string ratio(double ours, const std::optional<double>& paper) {
 
 }  // namespace
 
+BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted) {
+  auto source = openDataset(cell.standIn);
+  BenchGridOptions o;
+  o.sizes = {cell.imageSize};
+  o.nodes = {cell.nodes};
+  o.frames = frames;
+  o.base.transfer = loadTransferFunction(source->info().preset.empty() ? "grayscale" : source->info().preset);
+  const BenchResult r = runBenchGrid(*source, o, {}, stop);
+  interrupted = r.interrupted || r.cells.empty();
+  return r.cells.empty() ? BenchCell{} : r.cells.front();
+}
+
 std::string runPaperComparison(int frames, const std::function<void(const std::string&)>& log,
                                const std::atomic<bool>* stop) {
   std::string out =
@@ -42,15 +52,9 @@ std::string runPaperComparison(int frames, const std::function<void(const std::s
     }
     if (log) log(cell.table + ": " + cell.standIn + ", " + std::to_string(cell.imageSize) + "^2, P=" +
                  std::to_string(cell.nodes) + " ...");
-    auto source = openDataset(cell.standIn);
-    BenchGridOptions o;
-    o.sizes = {cell.imageSize};
-    o.nodes = {cell.nodes};
-    o.frames = frames;
-    o.base.transfer = loadTransferFunction(source->info().preset.empty() ? "grayscale" : source->info().preset);
-    const BenchResult r = runBenchGrid(*source, o, {}, stop);
-    if (r.cells.empty()) continue;
-    const BenchCell& c = r.cells.front();
+    bool interrupted = false;
+    const BenchCell c = measurePaperCell(cell, frames, stop, interrupted);
+    if (interrupted) continue;
     std::snprintf(buf, sizeof buf, "  %-15s %-16s %-15s %6d %5d | %9.4f %9.4f | %9s %9s | %8s %8s\n",
                   cell.table.c_str(), cell.paperData.c_str(), cell.standIn.c_str(), cell.imageSize, cell.nodes,
                   c.renderSeconds, c.compositeSeconds, seconds(cell.renderSeconds).c_str(),

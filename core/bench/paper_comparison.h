@@ -6,7 +6,14 @@
 #include <functional>
 #include <string>
 
+#include "core/bench/bench_grid.h"
+#include "core/bench/paper_tables.h"
+
 namespace kdswap {
+
+//! One paper cell with our stand-in: its preset, the default settings (step 0.5, shading),
+//! binary-swap, `frames` measured frames. `interrupted` is set when `stop` cut it short.
+BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted);
 
 //! Runs every cell of paperCells() (`frames` measured frames each) and returns the printed table.
 //! `log` gets a line per cell as it starts; `stop` (may be null) ends the run after a frame.

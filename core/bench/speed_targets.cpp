@@ -6,6 +6,8 @@
 
 #include "core/bench/bench_grid.h"
 #include "core/bench/micro_bench.h"
+#include "core/bench/paper_comparison.h"
+#include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
 #include "core/volume/respaced_source.h"
 #include "core/transfer/presets.h"
@@ -156,6 +158,28 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     out.push_back({"default scene (phantom:128), 512x512, P=8: frames per second",
                    "kdswap bench --sizes 512 --nodes 8 --frames " + std::to_string(o.frames),
                    c.wallSeconds > 0 ? 1.0 / c.wallSeconds : 0.0, 20.0, "fps", true, !interrupted, ""});
+  }
+
+  // The paper, ten times over: every sourced CM-5 cell with P = 32..512, our whole frame (all P
+  // virtual nodes on this machine, wall) against a tenth of the paper's render + composite.
+  for (const PaperCell& cell : paperCells()) {
+    if (stopped()) return out;
+    if (!cell.renderSeconds || !cell.compositeSeconds || cell.nodes < 32 || cell.nodes > 512) continue;
+    if (cell.table.find("CM-5") == std::string::npos) continue;
+    say(cell.table + ": " + cell.standIn + ", " + std::to_string(cell.imageSize) + "^2, P=" + std::to_string(cell.nodes) +
+        " ...");
+    const BenchCell c = measurePaperCell(cell, o.frames, stop, interrupted);
+    const double paper = *cell.renderSeconds + *cell.compositeSeconds;
+    char name[256];
+    std::snprintf(name, sizeof name, "%s, %s as %s, %d^2, P=%d: wall <= paper (render + composite) / 10",
+                  cell.table.c_str(), cell.paperData.c_str(), cell.standIn.c_str(), cell.imageSize, cell.nodes);
+    out.push_back({name,
+                   "kdswap bench --paper   (or kdswap bench --dataset " + cell.standIn + " --sizes " +
+                       std::to_string(cell.imageSize) + " --nodes " + std::to_string(cell.nodes) + " --frames " +
+                       std::to_string(o.frames) + ")",
+                   c.wallSeconds * 1e3, paper * 1e3 / 10.0, "ms", false, !interrupted,
+                   "paper " + ms(paper) + " (" + cell.source + "); our modelled parallel time " +
+                       ms(c.modelledSeconds)});
   }
   return out;
 }
