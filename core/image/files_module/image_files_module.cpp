@@ -29,6 +29,9 @@ extern "C" __attribute__((visibility("default"))) int kdswapWriteImageFile(const
                                                                            std::size_t errorSize) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) return fail("OpenImageIO cannot write this format: " + OIIO::geterror(), error, errorSize);
+  // The calling thread does the format conversion itself: kdswap schedules its own threads (oneTBB),
+  // and a private OpenImageIO pool would only add threads still alive at exit.
+  out->threads(1);
   OIIO::ImageSpec spec(width, height, channels, floatOut ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
   if (channels == 4) spec.alpha_channel = 3;
   if (!out->open(path, spec)) return fail("cannot open for writing: " + out->geterror(), error, errorSize);
@@ -44,6 +47,7 @@ extern "C" __attribute__((visibility("default"))) int kdswapReadImageFile(const 
                                                                           std::size_t errorSize) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) return fail("cannot read image: " + OIIO::geterror(), error, errorSize);
+  in->threads(1);  // as for writing
   const OIIO::ImageSpec& spec = in->spec();
   const std::size_t count = std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels);
   float* buffer = static_cast<float*>(std::malloc(count * sizeof(float)));
