@@ -108,11 +108,10 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
   while (kFirst <= kLast && !owned(samplePoint(kFirst))) ++kFirst;
   while (kLast >= kFirst && !owned(samplePoint(kLast))) --kLast;
 
-  MarchContext context = march_;
-  context.shading.toLight = -ray.direction;  // light at the eye
-  const RaySegment segment{o, d, 1.0f / d, step, phase, kFirst, kLast};  // 1 / d: used only where d != 0
+  // 1 / d: used only where d != 0. The light is at the eye.
+  const RaySegment segment{o, d, 1.0f / d, step, phase, kFirst, kLast, -ray.direction};
   std::uint64_t samples = 0;
-  const Rgba colour = marchFunction_(context, segment, samples);
+  const Rgba colour = marchFunction_(march_, segment, samples);
   counters.samples += samples;
   return colour;
 }

@@ -20,7 +20,7 @@
 
 namespace kdswap {
 
-//! A brick's constants for marching (the light direction in `shading` is set per ray).
+//! A brick's constants for marching, shared by all its rays.
 struct MarchContext {
   ShadingParameters shading;
   VoxelAddressing voxels;
@@ -40,6 +40,7 @@ struct RaySegment {
   glm::vec3 origin, direction, inverseDirection;  //!< voxel coordinates
   float step, phase;
   long first, last;
+  glm::vec3 toLight;  //!< unit vector to the light (at the eye)
 
   glm::vec3 point(long k) const { return origin + direction * ((float(k) + phase) * step); }
 

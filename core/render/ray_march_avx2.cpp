@@ -54,7 +54,7 @@ struct Shaded8 {
 };
 
 //! shadeSample for eight samples at points (px, py, pz) with voxels corner[j] at their floors.
-KDSWAP_AVX2 void shade8(const MarchContext& m, __m256 px, __m256 py, __m256 pz, const Voxel* const* corner,
+KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 px, __m256 py, __m256 pz, const Voxel* const* corner,
                         Shaded8& out) {
   const ShadingParameters& params = m.shading;
   const __m256 one = _mm256_set1_ps(1.0f);
@@ -112,9 +112,9 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, __m256 px, __m256 py, __m256 pz, 
   // Lambert term |g.l| / |g| (1 where the gradient is 0); dot products summed x + y + z, as glm::dot.
   const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, gradX), _mm256_mul_ps(gradY, gradY)),
                                     _mm256_mul_ps(gradZ, gradZ));
-  const __m256 dotL = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, _mm256_set1_ps(params.toLight.x)),
-                                                  _mm256_mul_ps(gradY, _mm256_set1_ps(params.toLight.y))),
-                                    _mm256_mul_ps(gradZ, _mm256_set1_ps(params.toLight.z)));
+  const __m256 dotL = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, _mm256_set1_ps(toLight.x)),
+                                                  _mm256_mul_ps(gradY, _mm256_set1_ps(toLight.y))),
+                                    _mm256_mul_ps(gradZ, _mm256_set1_ps(toLight.z)));
   const __m256 absDot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dotL);
   const __m256 lambert = _mm256_blendv_ps(one, _mm256_div_ps(absDot, _mm256_sqrt_ps(len2)),
                                           _mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ));
@@ -157,7 +157,7 @@ KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, 
   return false;
 }
 
-KDSWAP_AVX2 bool flush(const MarchContext& m, PendingSamples& pending, FrontToBack& result, std::uint64_t& samples) {
+KDSWAP_AVX2 bool flush(const MarchContext& m, const glm::vec3& toLight, PendingSamples& pending, FrontToBack& result, std::uint64_t& samples) {
   const int n = pending.size;
   if (n == 0) return false;
   for (int j = n; j < kLanes; ++j)  // unused lanes repeat the last sample: loads stay in the brick
@@ -165,7 +165,7 @@ KDSWAP_AVX2 bool flush(const MarchContext& m, PendingSamples& pending, FrontToBa
     pending.corner[j] = pending.corner[n - 1];
   pending.size = 0;
   Shaded8 shaded;
-  shade8(m, _mm256_load_ps(pending.x), _mm256_load_ps(pending.y), _mm256_load_ps(pending.z), pending.corner, shaded);
+  shade8(m, toLight, _mm256_load_ps(pending.x), _mm256_load_ps(pending.y), _mm256_load_ps(pending.z), pending.corner, shaded);
   return compositeInOrder(result, shaded, n, m.stopAt, samples);
 }
 
@@ -214,11 +214,11 @@ KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint
     _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), offset);
 
     if (visible == 0xFF) {  // eight visible samples in a row: shade them straight from registers
-      if (flush(m, pending, result, samples)) return result.rgba();
+      if (flush(m, s.toLight, pending, result, samples)) return result.rgba();
       const Voxel* corner[kLanes];
       for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
       Shaded8 shaded;
-      shade8(m, px, py, pz, corner, shaded);
+      shade8(m, s.toLight, px, py, pz, corner, shaded);
       if (compositeInOrder(result, shaded, kLanes, m.stopAt, samples)) return result.rgba();
       k += kLanes;
       continue;
@@ -238,7 +238,7 @@ KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint
       if (reaches[j] == 0) {
         PendingSamples& p = pending;
         p.x[p.size] = x[j], p.y[p.size] = y[j], p.z[p.size] = z[j], p.corner[p.size] = data + offsets[j];
-        if (++p.size == kLanes && flush(m, pending, result, samples)) return result.rgba();
+        if (++p.size == kLanes && flush(m, s.toLight, pending, result, samples)) return result.rgba();
         continue;
       }
       const std::size_t c = std::size_t(cells[j]);
@@ -249,7 +249,7 @@ KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint
     }
     k = next;
   }
-  flush(m, pending, result, samples);
+  flush(m, s.toLight, pending, result, samples);
   return result.rgba();
 }
 

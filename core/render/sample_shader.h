@@ -19,14 +19,13 @@ namespace kdswap {
 
 constexpr int kSpecularEntries = 256;  //!< pow(x, shininess) is tabulated at x = i / kSpecularEntries
 
-//! Constants of one ray's classification and shading.
+//! Constants of a brick's classification and shading (the light direction comes with each ray).
 struct ShadingParameters {
   const TransferTable* table = nullptr;
   float scale = 1.0f, bias = 0.0f;  //!< normalised scalar = value * scale + bias
   bool shading = true;
   float ambient = 0.0f, diffuse = 0.0f, specular = 0.0f;
   const float* specularTable = nullptr;  //!< kSpecularEntries + 1 values
-  glm::vec3 toLight{0.0f, 0.0f, 1.0f};   //!< unit vector
 };
 
 //! Colour (not premultiplied) and step-corrected opacity; colour is meaningful where a > 0.
@@ -35,15 +34,16 @@ struct ShadedSample {
 };
 
 //! Sample at p (voxel coordinates, inside the brick's owned box; floor = (int) p).
-inline ShadedSample shadeSample(const ShadingParameters& params, const VoxelAddressing& voxels, const glm::vec3& p,
-                                const glm::ivec3& floor) {
+//! `toLight`: unit vector from the sample to the light.
+inline ShadedSample shadeSample(const ShadingParameters& params, const glm::vec3& toLight, const VoxelAddressing& voxels,
+                                const glm::vec3& p, const glm::ivec3& floor) {
   const TrilinearCell::Lanes both = TrilinearCell(voxels, p, floor).interpolate();
   const glm::vec4 tf = params.table->lookup(both[0] * params.scale + params.bias);
   if (tf.a <= 0.0f || !params.shading) return ShadedSample{tf.r, tf.g, tf.b, tf.a};
   const glm::vec3 grad(both[1], both[2], both[3]);
   const float len2 = glm::dot(grad, grad);
   float lambert = 1.0f;  // no gradient (flat region): lit as if facing the light
-  if (len2 > 0.0f) lambert = std::fabs(glm::dot(grad, params.toLight)) / std::sqrt(len2);
+  if (len2 > 0.0f) lambert = std::fabs(glm::dot(grad, toLight)) / std::sqrt(len2);
   const float fs = std::min(lambert, 1.0f) * float(kSpecularEntries);
   const int is = std::min(int(fs), kSpecularEntries - 1);
   const float* specular = params.specularTable;
