@@ -50,7 +50,7 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   march_.cellLo = brick.cellLo();
   march_.cellCount = emptySpace_.cellCount();
   march_.lo = glm::vec3(brick.owned().lo), march_.hi = glm::vec3(brick.owned().hi);
-  march_.stopAt = settings.earlyTermination;
+  march_.stopTransmittance = std::max(0.0f, 1.0f - settings.earlyTermination);
 }
 
 void RayCaster::useMarch(MarchFunction march) {

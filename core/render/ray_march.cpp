@@ -21,7 +21,7 @@ Rgba marchScalar(const MarchContext& m, const RaySegment& s, std::uint64_t& samp
       continue;
     }
     ++samples;
-    if (result.add(shadeSample(m.shading, s.toLight, m.voxels, p, floor), m.stopAt)) break;
+    if (result.add(shadeSample(m.shading, s.toLight, m.voxels, p, floor), m.stopTransmittance)) break;
   }
   return result.rgba();
 }

@@ -28,7 +28,9 @@ struct MarchContext {
   const std::uint8_t* reach = nullptr;  //!< EmptySpaceMap::reachData(), padded for 4-byte gathers
   glm::ivec3 cellLo{0}, cellCount{0};
   glm::vec3 lo{0.0f}, hi{0.0f};     //!< owned box [lo, hi), voxel coordinates
-  float stopAt = 1.0f;              //!< early ray termination threshold
+  //! Early ray termination: the ray stops once its transmittance (1 - opacity) is at most this,
+  //! 1 - the termination opacity (0 with termination off: only an opaque sample ends the ray).
+  float stopTransmittance = 0.0f;
 
   std::size_t cellIndex(const glm::ivec3& c) const {  //!< c relative to cellLo
     return (std::size_t(c.z) * cellCount.y + c.y) * cellCount.x + c.x;
@@ -58,20 +60,22 @@ struct RaySegment {
   }
 };
 
-//! Front-to-back "over" of shaded samples, in lattice order.
+//! Front-to-back "over" of shaded samples, in lattice order. It carries the transmittance
+//! T = prod(1 - a) rather than the opacity: then each sample's dependency chain is a single
+//! multiply (T *= 1 - a), not a subtract, multiply and add, which bounds the march's speed.
 struct FrontToBack {
-  float r = 0.0f, g = 0.0f, b = 0.0f, alpha = 0.0f;
+  float r = 0.0f, g = 0.0f, b = 0.0f, transmittance = 1.0f;
   //! Adds one sample; true once the ray is opaque enough to stop (early ray termination).
-  bool add(const ShadedSample& s, float stopAt) {
+  bool add(const ShadedSample& s, float stopTransmittance) {
     if (s.a <= 0.0f) return false;
-    const float w = (1.0f - alpha) * s.a;
+    const float w = transmittance * s.a;
     r += w * s.r;
     g += w * s.g;
     b += w * s.b;
-    alpha += w;
-    return alpha >= stopAt;
+    transmittance *= 1.0f - s.a;
+    return transmittance <= stopTransmittance;
   }
-  Rgba rgba() const { return Rgba{r, g, b, alpha}; }
+  Rgba rgba() const { return Rgba{r, g, b, 1.0f - transmittance}; }
 };
 
 //! Marches `segment`; adds the samples taken (those in cells that can be visible, up to the one

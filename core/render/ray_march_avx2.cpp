@@ -142,19 +142,31 @@ struct PendingSamples {
   int size = 0;
 };
 
-//! Composites the first n shaded samples in order; true when the ray is done.
+//! Composites the first n shaded samples in order; true when the ray is done. The accumulator is
+//! copied into locals so that it stays in registers across the loop (the caller's copy lives in
+//! memory, and a store and reload per sample would lengthen the serial chain).
 //! Samples with zero opacity change nothing (FrontToBack::add), so only contributing lanes are visited.
-KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopAt,
+KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopTransmittance,
                                          std::uint64_t& samples) {
+  float r = result.r, g = result.g, b = result.b, transmittance = result.transmittance;
+  bool done = false;
+  int counted = n;
   for (int bits = s.contributing & ((1 << n) - 1); bits != 0; bits &= bits - 1) {
     const int j = __builtin_ctz(bits);
-    if (result.add(ShadedSample{s.r[j], s.g[j], s.b[j], s.a[j]}, stopAt)) {
-      samples += std::uint64_t(j + 1);  // the scalar march counts up to the sample that ends the ray
-      return true;
+    const float a = s.a[j], w = transmittance * a;  // the operations of FrontToBack::add, in its order
+    r += w * s.r[j];
+    g += w * s.g[j];
+    b += w * s.b[j];
+    transmittance *= 1.0f - a;
+    if (transmittance <= stopTransmittance) {
+      counted = j + 1;  // the scalar march counts up to the sample that ends the ray
+      done = true;
+      break;
     }
   }
-  samples += std::uint64_t(n);
-  return false;
+  result.r = r, result.g = g, result.b = b, result.transmittance = transmittance;
+  samples += std::uint64_t(counted);
+  return done;
 }
 
 KDSWAP_AVX2 bool flush(const MarchContext& m, const glm::vec3& toLight, PendingSamples& pending, FrontToBack& result, std::uint64_t& samples) {
@@ -166,7 +178,7 @@ KDSWAP_AVX2 bool flush(const MarchContext& m, const glm::vec3& toLight, PendingS
   pending.size = 0;
   Shaded8 shaded;
   shade8(m, toLight, _mm256_load_ps(pending.x), _mm256_load_ps(pending.y), _mm256_load_ps(pending.z), pending.corner, shaded);
-  return compositeInOrder(result, shaded, n, m.stopAt, samples);
+  return compositeInOrder(result, shaded, n, m.stopTransmittance, samples);
 }
 
 KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
@@ -219,7 +231,7 @@ KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint
       for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
       Shaded8 shaded;
       shade8(m, s.toLight, px, py, pz, corner, shaded);
-      if (compositeInOrder(result, shaded, kLanes, m.stopAt, samples)) return result.rgba();
+      if (compositeInOrder(result, shaded, kLanes, m.stopTransmittance, samples)) return result.rgba();
       k += kLanes;
       continue;
     }
