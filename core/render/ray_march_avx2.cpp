@@ -21,31 +21,65 @@ constexpr int kLanes = 8;
 
 // ---- [Shading of eight samples] -----------------------------------------------------------------
 
-KDSWAP_AVX2 inline __m128 weighted(const float (*w)[kLanes], int corner, int lane, const Voxel* voxel) {
-  return _mm_mul_ps(_mm_set1_ps(w[corner][lane]), _mm_loadu_ps(&voxel->value));
+//! Corner voxel at `offset` from sample j's floor voxel `a` (low half) and sample j + 4's `b`
+//! (high half): 4-float vectors (value, gradient).
+KDSWAP_AVX2 inline __m256 cornerPair(const Voxel* a, const Voxel* b, std::ptrdiff_t offset) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(&a[offset].value)), _mm_loadu_ps(&b[offset].value), 1);
 }
 
-//! Value and gradient of one sample: corners 000 100 010 110 001 101 011 111, summed in that order.
-KDSWAP_AVX2 inline __m128 interpolate(const Voxel* v, std::ptrdiff_t sy, std::ptrdiff_t sz, const float (*w)[kLanes],
-                                       int lane) {
-  __m128 sum = _mm_add_ps(weighted(w, 0, lane, v), weighted(w, 1, lane, v + 1));
-  sum = _mm_add_ps(sum, weighted(w, 2, lane, v + sy));
-  sum = _mm_add_ps(sum, weighted(w, 3, lane, v + sy + 1));
-  sum = _mm_add_ps(sum, weighted(w, 4, lane, v + sz));
-  sum = _mm_add_ps(sum, weighted(w, 5, lane, v + sz + 1));
-  sum = _mm_add_ps(sum, weighted(w, 6, lane, v + sz + sy));
-  return _mm_add_ps(sum, weighted(w, 7, lane, v + sz + sy + 1));
+//! One corner's weighted voxels for a pair of samples (weights of the pair picked from eight).
+KDSWAP_AVX2 inline __m256 term(__m256 weights, __m256i pick, __m256 corners) {
+  return _mm256_mul_ps(_mm256_permutevar8x32_ps(weights, pick), corners);
+}
+
+//! Value and gradient of samples j (low half) and j + 4 (high half) at once. `w[c]` holds corner
+//! c's weight of the eight samples; `pick` selects j's in the low half and j + 4's in the high.
+//! Corners 000 100 010 110 001 101 011 111, summed in that order (as TrilinearCell).
+KDSWAP_AVX2 inline __m256 interpolatePair(const Voxel* a, const Voxel* b, std::ptrdiff_t sy, std::ptrdiff_t sz,
+                                          const __m256* w, __m256i pick) {
+  __m256 sum = _mm256_add_ps(term(w[0], pick, cornerPair(a, b, 0)), term(w[1], pick, cornerPair(a, b, 1)));
+  sum = _mm256_add_ps(sum, term(w[2], pick, cornerPair(a, b, sy)));
+  sum = _mm256_add_ps(sum, term(w[3], pick, cornerPair(a, b, sy + 1)));
+  sum = _mm256_add_ps(sum, term(w[4], pick, cornerPair(a, b, sz)));
+  sum = _mm256_add_ps(sum, term(w[5], pick, cornerPair(a, b, sz + 1)));
+  sum = _mm256_add_ps(sum, term(w[6], pick, cornerPair(a, b, sz + sy)));
+  return _mm256_add_ps(sum, term(w[7], pick, cornerPair(a, b, sz + sy + 1)));
+}
+
+//! Registers j = 0..3 each hold a 4-vector of lane j (low half) and of lane j + 4 (high half);
+//! out[q] gets component q of all eight lanes, in lane order (a 4x4 transpose in each half).
+KDSWAP_AVX2 inline void transposeHalves(const __m256* in, __m256* out) {
+  const __m256 u0 = _mm256_unpacklo_ps(in[0], in[1]), u1 = _mm256_unpackhi_ps(in[0], in[1]);
+  const __m256 u2 = _mm256_unpacklo_ps(in[2], in[3]), u3 = _mm256_unpackhi_ps(in[2], in[3]);
+  out[0] = _mm256_shuffle_ps(u0, u2, _MM_SHUFFLE(1, 0, 1, 0));
+  out[1] = _mm256_shuffle_ps(u0, u2, _MM_SHUFFLE(3, 2, 3, 2));
+  out[2] = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(1, 0, 1, 0));
+  out[3] = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+//! TransferTable::lookup of eight samples at entries `index` (already clamped) and fractions
+//! `frac`: each lane's entries i and i + 1 are adjacent (the table repeats its last entry), so
+//! they are loaded as vectors and transposed, rather than gathered channel by channel.
+//! out[0..3] = r, g, b, a, each e0 + frac * (e1 - e0).
+KDSWAP_AVX2 inline void lookup8(const glm::vec4* entries, __m256i index, __m256 frac, __m256* out) {
+  alignas(32) int at[kLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at), index);
+  __m256 first[4], second[4];
+  for (int j = 0; j < 4; ++j) {
+    const float* a = &entries[at[j]].r;
+    const float* b = &entries[at[j + 4]].r;
+    first[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(a)), _mm_loadu_ps(b), 1);
+    second[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(a + 4)), _mm_loadu_ps(b + 4), 1);
+  }
+  __m256 e0[4], e1[4];
+  transposeHalves(first, e0);
+  transposeHalves(second, e1);
+  for (int c = 0; c < 4; ++c) out[c] = _mm256_add_ps(e0[c], _mm256_mul_ps(frac, _mm256_sub_ps(e1[c], e0[c])));
 }
 
 //! min(1, c * light + highlight), as glm::min(colour * light + highlight, vec3(1)).
 KDSWAP_AVX2 inline __m256 lit(__m256 c, __m256 light, __m256 highlight) {
   return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(_mm256_mul_ps(c, light), highlight));
-}
-
-//! One channel of TransferTable::lookup: e0 + frac * (e1 - e0), entries 4 floats apart.
-KDSWAP_AVX2 inline __m256 tableChannel(const float* channel, __m256i at0, __m256i at1, __m256 frac) {
-  const __m256 e0 = _mm256_i32gather_ps(channel, at0, 4), e1 = _mm256_i32gather_ps(channel, at1, 4);
-  return _mm256_add_ps(e0, _mm256_mul_ps(frac, _mm256_sub_ps(e1, e0)));
 }
 
 struct Shaded8 {
@@ -63,48 +97,35 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 
   const __m256 fy = _mm256_sub_ps(py, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(py)));
   const __m256 fz = _mm256_sub_ps(pz, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(pz)));
   const __m256 gx = _mm256_sub_ps(one, fx), gy = _mm256_sub_ps(one, fy), gz = _mm256_sub_ps(one, fz);
-  alignas(32) float w[8][kLanes];
-  _mm256_store_ps(w[0], _mm256_mul_ps(_mm256_mul_ps(gx, gy), gz));
-  _mm256_store_ps(w[1], _mm256_mul_ps(_mm256_mul_ps(fx, gy), gz));
-  _mm256_store_ps(w[2], _mm256_mul_ps(_mm256_mul_ps(gx, fy), gz));
-  _mm256_store_ps(w[3], _mm256_mul_ps(_mm256_mul_ps(fx, fy), gz));
-  _mm256_store_ps(w[4], _mm256_mul_ps(_mm256_mul_ps(gx, gy), fz));
-  _mm256_store_ps(w[5], _mm256_mul_ps(_mm256_mul_ps(fx, gy), fz));
-  _mm256_store_ps(w[6], _mm256_mul_ps(_mm256_mul_ps(gx, fy), fz));
-  _mm256_store_ps(w[7], _mm256_mul_ps(_mm256_mul_ps(fx, fy), fz));
+  const __m256 w[8] = {
+      _mm256_mul_ps(_mm256_mul_ps(gx, gy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), gz),
+      _mm256_mul_ps(_mm256_mul_ps(gx, fy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), gz),
+      _mm256_mul_ps(_mm256_mul_ps(gx, gy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), fz),
+      _mm256_mul_ps(_mm256_mul_ps(gx, fy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), fz)};
 
-  // Lanes j and j + 4 share a register; a 4x4 transpose in each half then gives one register per
-  // quantity with the lanes in order.
+  // Samples j and j + 4 share a register; a 4x4 transpose in each half then gives one register
+  // per quantity with the samples in order.
   const std::ptrdiff_t sy = m.voxels.sy, sz = m.voxels.sz;
-  __m256 t[4];
+  __m256 t[4], q[4];
   for (int j = 0; j < 4; ++j)
-    t[j] = _mm256_set_m128(interpolate(corner[j + 4], sy, sz, w, j + 4), interpolate(corner[j], sy, sz, w, j));
-  const __m256 u0 = _mm256_unpacklo_ps(t[0], t[1]), u1 = _mm256_unpackhi_ps(t[0], t[1]);
-  const __m256 u2 = _mm256_unpacklo_ps(t[2], t[3]), u3 = _mm256_unpackhi_ps(t[2], t[3]);
-  const __m256 value = _mm256_shuffle_ps(u0, u2, _MM_SHUFFLE(1, 0, 1, 0));
-  const __m256 gradX = _mm256_shuffle_ps(u0, u2, _MM_SHUFFLE(3, 2, 3, 2));
-  const __m256 gradY = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(1, 0, 1, 0));
-  const __m256 gradZ = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(3, 2, 3, 2));
+    t[j] = interpolatePair(corner[j], corner[j + 4], sy, sz, w, _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4));
+  transposeHalves(t, q);
+  const __m256 value = q[0], gradX = q[1], gradY = q[2], gradZ = q[3];
 
-  // TransferTable::lookup: clamp (NaN to 0), then linear between entries i and min(i + 1, last).
+  // TransferTable::lookup: clamp (NaN to 0), then linear between entries i and i + 1.
   const float last = float(TransferTable::kSize - 1);
   const __m256 s = _mm256_add_ps(_mm256_mul_ps(value, _mm256_set1_ps(params.scale)), _mm256_set1_ps(params.bias));
   __m256 f = _mm256_mul_ps(s, _mm256_set1_ps(last));
   f = _mm256_and_ps(f, _mm256_cmp_ps(f, _mm256_setzero_ps(), _CMP_GE_OQ));
   f = _mm256_blendv_ps(f, _mm256_set1_ps(last), _mm256_cmp_ps(f, _mm256_set1_ps(last), _CMP_GT_OQ));
   const __m256i i0 = _mm256_cvttps_epi32(f);
-  const __m256i i1 =
-      _mm256_min_epi32(_mm256_add_epi32(i0, _mm256_set1_epi32(1)), _mm256_set1_epi32(TransferTable::kSize - 1));
   const __m256 frac = _mm256_sub_ps(f, _mm256_cvtepi32_ps(i0));
-  const float* entries = &params.table->entries()->r;
-  const __m256i at0 = _mm256_slli_epi32(i0, 2), at1 = _mm256_slli_epi32(i1, 2);  // 4 floats per entry
   __m256 tf[4];
-  // Opacity first: where no sample is visible (common in sparse data), colour is never used.
-  tf[3] = tableChannel(entries + 3, at0, at1, frac);
+  lookup8(params.table->entries(), i0, frac, tf);
+  // Where no sample is visible (common in sparse data), colour and shading are never used.
   out.contributing = _mm256_movemask_ps(_mm256_cmp_ps(tf[3], _mm256_setzero_ps(), _CMP_NLE_UQ));  // !(a <= 0), as add()
   _mm256_store_ps(out.a, tf[3]);
   if (out.contributing == 0) return;
-  for (int c = 0; c < 3; ++c) tf[c] = tableChannel(entries + c, at0, at1, frac);
   if (!params.shading) {
     _mm256_store_ps(out.r, tf[0]), _mm256_store_ps(out.g, tf[1]), _mm256_store_ps(out.b, tf[2]);
     return;

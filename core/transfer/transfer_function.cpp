@@ -132,13 +132,14 @@ TransferFunction TransferFunction::ramp(float start, float peak) {
                           {{0.0f, 0.0f}, {start, 0.0f}, {1.0f, peak}}, "ramp");
 }
 
-TransferTable::TransferTable(const TransferFunction& tf, float stepVoxels) : entries_(kSize) {
+TransferTable::TransferTable(const TransferFunction& tf, float stepVoxels) : entries_(kSize + 1) {
   for (int i = 0; i < kSize; ++i) {
     glm::vec4 e = tf.evaluate(float(i) / float(kSize - 1));
     // Opacity correction for the sampling distance (Levoy; Engel et al., Real-Time Volume Graphics).
     e.a = e.a >= 1.0f ? 1.0f : 1.0f - std::pow(1.0f - e.a, stepVoxels);
     entries_[i] = e;
   }
+  entries_[kSize] = entries_[kSize - 1];
   visibleBefore_.assign(kSize + 1, 0);
   for (int i = 0; i < kSize; ++i) visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].a > 0.0f ? 1 : 0);
   minAlphaRuns_.emplace_back(kSize);

@@ -71,11 +71,12 @@ class TransferTable {
     float f = s * float(kSize - 1);
     f = !(f >= 0.0f) ? 0.0f : (f > float(kSize - 1) ? float(kSize - 1) : f);  // NaN maps to entry 0
     const int i = int(f);
-    const int j = i + 1 < kSize ? i + 1 : i;
-    const float t = f - float(i);
-    return entries_[i] + t * (entries_[j] - entries_[i]);
+    const float t = f - float(i);  // 0 at the last entry, whose copy follows it
+    return entries_[i] + t * (entries_[i + 1] - entries_[i]);
   }
-  //! The kSize entries lookup() interpolates (for the SIMD shader, which must match lookup exactly).
+  //! The entries lookup() interpolates (for the SIMD shader, which must match lookup exactly):
+  //! kSize + 1 of them, the last a copy of entry kSize - 1, so entry i + 1 always exists and
+  //! entries i and i + 1 are one contiguous 32-byte run.
   const glm::vec4* entries() const { return entries_.data(); }
   //! Largest corrected opacity over normalised scalars in [s0, s1].
   float maxAlpha(float s0, float s1) const;
