@@ -4,8 +4,8 @@
 // order; nothing is fused (this file enables AVX2 only, not FMA, and the build compiles with
 // -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
 // bit. A sample's eight corner voxels are 4-float vectors (value, gradient), so interpolation runs
-// per sample on 4 lanes, as TrilinearCell does, and is then transposed into one register per
-// quantity; everything after it runs on eight samples per instruction.
+// on 4 lanes per sample, as TrilinearCell does (two samples per register), and is then transposed
+// into one register per quantity; everything after it runs on eight samples per instruction.
 #include "core/render/ray_march.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -21,10 +21,15 @@ constexpr int kLanes = 8;
 
 // ---- [Shading of eight samples] -----------------------------------------------------------------
 
+//! Four floats at `low` in the low half and four at `high` in the high half.
+KDSWAP_AVX2 inline __m256 loadPair(const float* low, const float* high) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(low)), _mm_loadu_ps(high), 1);
+}
+
 //! Corner voxel at `offset` from sample j's floor voxel `a` (low half) and sample j + 4's `b`
 //! (high half): 4-float vectors (value, gradient).
 KDSWAP_AVX2 inline __m256 cornerPair(const Voxel* a, const Voxel* b, std::ptrdiff_t offset) {
-  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(&a[offset].value)), _mm_loadu_ps(&b[offset].value), 1);
+  return loadPair(&a[offset].value, &b[offset].value);
 }
 
 //! One corner's weighted voxels for a pair of samples (weights of the pair picked from eight).
@@ -68,8 +73,8 @@ KDSWAP_AVX2 inline void lookup8(const glm::vec4* entries, __m256i index, __m256 
   for (int j = 0; j < 4; ++j) {
     const float* a = &entries[at[j]].r;
     const float* b = &entries[at[j + 4]].r;
-    first[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(a)), _mm_loadu_ps(b), 1);
-    second[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(a + 4)), _mm_loadu_ps(b + 4), 1);
+    first[j] = loadPair(a, b);
+    second[j] = loadPair(a + 4, b + 4);
   }
   __m256 e0[4], e1[4];
   transposeHalves(first, e0);
@@ -163,29 +168,24 @@ struct PendingSamples {
   int size = 0;
 };
 
-//! Composites the first n shaded samples in order; true when the ray is done. The accumulator is
-//! copied into locals so that it stays in registers across the loop (the caller's copy lives in
+//! Composites the first n shaded samples in order; true when the ray is done. It works on a local
+//! copy of the accumulator, which stays in registers across the loop (the caller's lives in
 //! memory, and a store and reload per sample would lengthen the serial chain).
 //! Samples with zero opacity change nothing (FrontToBack::add), so only contributing lanes are visited.
 KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopTransmittance,
                                          std::uint64_t& samples) {
-  float r = result.r, g = result.g, b = result.b, transmittance = result.transmittance;
+  FrontToBack local = result;
   bool done = false;
   int counted = n;
   for (int bits = s.contributing & ((1 << n) - 1); bits != 0; bits &= bits - 1) {
     const int j = __builtin_ctz(bits);
-    const float a = s.a[j], w = transmittance * a;  // the operations of FrontToBack::add, in its order
-    r += w * s.r[j];
-    g += w * s.g[j];
-    b += w * s.b[j];
-    transmittance *= 1.0f - a;
-    if (transmittance <= stopTransmittance) {
+    if (local.add(ShadedSample{s.r[j], s.g[j], s.b[j], s.a[j]}, stopTransmittance)) {
       counted = j + 1;  // the scalar march counts up to the sample that ends the ray
       done = true;
       break;
     }
   }
-  result.r = r, result.g = g, result.b = b, result.transmittance = transmittance;
+  result = local;
   samples += std::uint64_t(counted);
   return done;
 }
