@@ -3,7 +3,8 @@
 
 KDSWAP_PACKAGES=(
   build-essential cmake ninja-build pkg-config git
-  libtbb-dev libglm-dev libglfw3-dev libimgui-dev libopenimageio-dev doctest-dev
+  # openimageio-tools: OpenImageIO's CMake config names its tools (iconvert...) and fails without them
+  libtbb-dev libglm-dev libglfw3-dev libimgui-dev libopenimageio-dev openimageio-tools doctest-dev
   libcli11-dev nlohmann-json3-dev zlib1g-dev libnifti-dev
   xvfb xauth libgl1-mesa-dri libgl-dev
   libopenmpi-dev openmpi-bin
