@@ -20,17 +20,6 @@ void axesFor(UpAxis up, glm::vec3& upAxis, glm::vec3& frontAxis) {
   frontAxis = axis == 1 ? glm::vec3(0, 0, -1) : glm::vec3(0, -1, 0);
 }
 
-// Integer hash of a pixel (a few rounds of multiply-xorshift) mapped to [0, 1).
-float pixelHash(int px, int py) {
-  std::uint32_t h = std::uint32_t(px) * 0x8da6b343u ^ std::uint32_t(py) * 0xd8163841u;
-  h ^= h >> 16;
-  h *= 0x7feb352du;
-  h ^= h >> 15;
-  h *= 0x846ca68bu;
-  h ^= h >> 16;
-  return float(h >> 8) * (1.0f / 16777216.0f);
-}
-
 }  // namespace
 
 Camera::Camera(const View& view, const glm::vec3& worldMin, const glm::vec3& worldMax, int width, int height)
@@ -53,14 +42,6 @@ Camera::Camera(const View& view, const glm::vec3& worldMin, const glm::vec3& wor
   aspect_ = float(width) / float(std::max(height, 1));
   const float tanHalf = std::tan(glm::radians(std::clamp(view.fovDeg, 1.0f, 170.0f)) * 0.5f);
   halfHeight_ = orthographic_ ? tanHalf * view.distance * radius : tanHalf;
-}
-
-Ray Camera::ray(int px, int py) const {
-  const float sx = ((float(px) + 0.5f) / float(width_) * 2.0f - 1.0f) * aspect_ * halfHeight_;
-  const float sy = (1.0f - (float(py) + 0.5f) / float(height_) * 2.0f) * halfHeight_;
-  const float offset = pixelHash(px, py);
-  if (orthographic_) return Ray{eye_ + sx * right_ + sy * up_, forward_, offset};
-  return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), offset};
 }
 
 std::optional<glm::vec2> Camera::project(const glm::vec3& world) const {

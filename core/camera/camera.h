@@ -2,8 +2,10 @@
 // World space is voxel index times spacing; the volume's data domain is [0, (dims-1)*spacing].
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -24,8 +26,25 @@ class Camera {
  public:
   Camera(const View& view, const glm::vec3& worldMin, const glm::vec3& worldMax, int width, int height);
 
-  //! The ray through the centre of pixel (px, py); y grows downward.
-  Ray ray(int px, int py) const;
+  //! The ray through the centre of pixel (px, py); y grows downward. Inline: every brick asks for
+  //! every pixel it covers, and a call returning the ray through memory cost more than the math.
+  Ray ray(int px, int py) const {
+    const float sx = ((float(px) + 0.5f) / float(width_) * 2.0f - 1.0f) * aspect_ * halfHeight_;
+    const float sy = (1.0f - (float(py) + 0.5f) / float(height_) * 2.0f) * halfHeight_;
+    const float offset = pixelOffset(px, py);
+    if (orthographic_) return Ray{eye_ + sx * right_ + sy * up_, forward_, offset};
+    return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), offset};
+  }
+  //! A ray's lattice phase: an integer hash of the pixel (multiply-xorshift rounds) in [0, 1).
+  static float pixelOffset(int px, int py) {
+    std::uint32_t h = std::uint32_t(px) * 0x8da6b343u ^ std::uint32_t(py) * 0xd8163841u;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return float(h >> 8) * (1.0f / 16777216.0f);
+  }
   //! Pixel coordinates (continuous; pixel centres at +0.5) of a world point, or nothing when the
   //! point is at or behind the eye (perspective).
   std::optional<glm::vec2> project(const glm::vec3& world) const;

@@ -18,10 +18,19 @@
 #include "core/render/voxel_ray.h"
 #include "core/util/clock.h"
 
+#if defined(__GNUC__)
+#define KDSWAP_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define KDSWAP_ALWAYS_INLINE
+#endif
+
 namespace kdswap {
 namespace {
 
 constexpr int kTileSize = 16;
+// Direction components smaller than this count as parallel to the box's faces: their reciprocal
+// could overflow, and over any distance a ray can travel in a volume they move it by nothing.
+constexpr float kTinyDirection = 1e-30f;
 
 }  // namespace
 
@@ -59,26 +68,37 @@ void RayCaster::useMarch(MarchFunction march) {
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedFrom) const {
   if (!emptySpace_.anyVisible()) return Rgba{};
-  // Ray in voxel coordinates: every brick computes these identically for the same pixel.
-  const VoxelRay voxelRay(ray, brick_.spacing(), settings_);
+  return castVoxelRay(VoxelRay(ray, brick_.spacing(), settings_), -ray.direction, clipBox(), counters, occludedFrom);
+}
+
+RayCaster::ClipBox RayCaster::clipBox() const {
+  const glm::vec3 hi(brick_.owned().hi);
+  return ClipBox{emptySpace_.visibleLo(), emptySpace_.visibleHi(), std::max({std::fabs(hi.x), std::fabs(hi.y), std::fabs(hi.z)}) + 1.0f};
+}
+
+// Inlined into render's pixel loop: the ray then stays in registers instead of passing through
+// memory once per pixel and brick.
+KDSWAP_ALWAYS_INLINE inline Rgba RayCaster::castVoxelRay(const VoxelRay& voxelRay, const glm::vec3& toLight, const ClipBox& clip,
+                                                         RenderCounters& counters, long occludedFrom) const {
   const glm::vec3 o = voxelRay.origin;
   const glm::vec3 d = voxelRay.direction;
   const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
-  const glm::vec3 clipLo = emptySpace_.visibleLo(), clipHi = emptySpace_.visibleHi();
+  // 1 / d: used only where d != 0 (and not so small that it overflows).
+  const glm::vec3 inverse = 1.0f / d;
 
   // Clip to the visible part of the owned box, grown by more than the rounding error of p = o + d * t, to bound the
   // lattice indices; membership is then decided per sample on the computed p. The margin matters
-  // for rays nearly parallel to a face, where a tiny error in p is a large error in t.
-  const float magnitude = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)}) +
-                          std::max({std::fabs(hi.x), std::fabs(hi.y), std::fabs(hi.z)}) + 1.0f;
+  // for rays nearly parallel to a face, where a tiny error in p is a large error in t. The bound
+  // multiplies by 1 / d (a rounding more than dividing): the index slack below absorbs that.
+  const float magnitude = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)}) + clip.hiMagnitude;
   const float margin = 4e-6f * magnitude;
   float tNear = 0.0f, tFar = std::numeric_limits<float>::max();
   for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0f) {
-      if (o[a] < clipLo[a] - margin || o[a] > clipHi[a] + margin) return Rgba{};
+    if (!(std::fabs(d[a]) >= kTinyDirection)) {  // parallel to this face, as far as the box can tell
+      if (o[a] < clip.lo[a] - margin || o[a] > clip.hi[a] + margin) return Rgba{};
       continue;
     }
-    float t1 = (clipLo[a] - margin - o[a]) / d[a], t2 = (clipHi[a] + margin - o[a]) / d[a];
+    float t1 = (clip.lo[a] - margin - o[a]) * inverse[a], t2 = (clip.hi[a] + margin - o[a]) * inverse[a];
     if (t1 > t2) std::swap(t1, t2);
     tNear = std::max(tNear, t1);
     tFar = std::min(tFar, t2);
@@ -108,8 +128,8 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
   while (kFirst <= kLast && !owned(samplePoint(kFirst))) ++kFirst;
   while (kLast >= kFirst && !owned(samplePoint(kLast))) --kLast;
 
-  // 1 / d: used only where d != 0. The light is at the eye.
-  const RaySegment segment{o, d, 1.0f / d, step, phase, kFirst, kLast, -ray.direction};
+  // The light is at the eye.
+  const RaySegment segment{o, d, inverse, step, phase, kFirst, kLast, toLight};
   std::uint64_t samples = 0;
   const Rgba colour = marchFunction_(march_, segment, samples);
   counters.samples += samples;
@@ -122,6 +142,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   const Rect rect = camera.projectBox(emptySpace_.visibleLo() * spacing, emptySpace_.visibleHi() * spacing);
   Image image(rect);
   if (rect.empty()) return image;
+  const ClipBox clip = clipBox();
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).
@@ -132,9 +153,11 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
           const double start = nowSeconds();
           RenderCounters& local = perThread.local();
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-            for (int x = tile.cols().begin(); x < tile.cols().end(); ++x)
-              image.at(x, y) =
-                  castRay(camera.ray(x, y), local, occlusion_ ? occlusion_->occludedFrom(x, y) : OcclusionGrid::kNever);
+            for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+              const Ray ray = camera.ray(x, y);
+              image.at(x, y) = castVoxelRay(VoxelRay(ray, spacing, settings_), -ray.direction, clip, local,
+                                            occlusion_ ? occlusion_->occludedFrom(x, y) : OcclusionGrid::kNever);
+            }
           local.seconds += nowSeconds() - start;
         });
   });

@@ -15,6 +15,7 @@
 #include "core/image/image.h"
 #include "core/render/render_settings.h"
 #include "core/render/ray_march.h"
+#include "core/render/voxel_ray.h"
 #include "core/transfer/transfer_function.h"
 #include "core/volume/brick.h"
 
@@ -47,6 +48,16 @@ class RayCaster {
   void useMarch(MarchFunction march);
 
  private:
+  //! The box rays are clipped to (the visible part of the owned box) and the size of its far
+  //! corner, for the clip's rounding margin: per brick, not per ray.
+  struct ClipBox {
+    glm::vec3 lo, hi;
+    float hiMagnitude;
+  };
+  ClipBox clipBox() const;
+  Rgba castVoxelRay(const VoxelRay& ray, const glm::vec3& toLight, const ClipBox& clip, RenderCounters& counters,
+                    long occludedFrom) const;
+
   const Brick& brick_;
   const TransferTable& table_;
   const RenderSettings& settings_;
