@@ -101,6 +101,30 @@ TEST_CASE("occlusion bound: every ray it culls is one the single-node ray ends b
   }
 }
 
+TEST_CASE("occlusion bound: an opaque wall eight voxels thick is credited, wherever it sits in the cells") {
+  // An 8^3 cell's samples touch 9 voxels per axis, so an 8-voxel wall shares every such cell with
+  // the empty space around it; it fills some 4^3 cell (5 voxels) at any offset, and the summary
+  // must see it as opaque.
+  for (const int wallLo : {16, 17, 18, 19}) {
+    auto volume = test::makeVolume(glm::ivec3(48, 40, 40), [wallLo](int x, int, int) {
+      return x >= wallLo && x < wallLo + 8 ? 1.0f : 0.0f;
+    });
+    const Brick whole = wholeVolumeBrick(*volume);
+    const float step = 0.5f;
+    const TransferTable table(loadTransferFunction("grayscale"), step);
+    const glm::vec2 map = normalisingScaleBias(resolveValueRange(RenderSettings{}, volume->info()));
+    const OcclusionGrid grid(CellRangeGrid::fromBricks(volume->info().dims, {&whole}), table, map.x, map.y, 0.95f);
+    REQUIRE(grid.active());
+    // Along +x through the middle: the ray must be proven to end inside or just past the wall.
+    const glm::vec3 o(0.0f, 20.3f, 19.6f), d(1.0f, 0.0f, 0.0f);
+    const long k = grid.occludedFrom(o, d, step, 0.25f);
+    REQUIRE(k != OcclusionGrid::kNever);
+    CHECK((float(k) + 0.25f) * step <= float(wallLo + 8));
+    // And the bound is sound: the single-node ray's samples before k do reach the opacity.
+    CHECK(opacityBefore(whole, table, map.x, map.y, o, d, k, step, 0.25f) >= 0.95f);
+  }
+}
+
 TEST_CASE("occlusion map: stopping each single-node ray at its map index changes no pixel") {
   for (const std::string data : {"block", "phantom:96"}) {
     auto volume = openData(data);

@@ -122,7 +122,7 @@ class VirtualCluster {
   std::vector<NodeState> nodes_;  //!< nodes_[r] is touched only by node r's task
   double distributeSeconds_ = 0;
   //! Value range of every macro cell of the whole volume, gathered once from the nodes' bricks:
-  //! the replicated summary occlusion culling reads (1/512 of the voxel count).
+  //! the replicated summary occlusion culling reads (1/64 of the voxel count).
   CellRangeGrid cellRanges_;
   FaultPlan fault_;  //!< armed for the next frame only
 };

@@ -12,7 +12,7 @@
 namespace kdswap {
 namespace {
 
-constexpr int kCell = 1 << Brick::kCellShift;
+constexpr int kCell = 1 << CellRangeGrid::kShift;
 // Float accumulation of "over" can fall short of the exact opacity product by about one rounding
 // per sample; this much opacity margin covers thousands of samples.
 constexpr float kOpacityMargin = 1e-3f;
@@ -27,17 +27,24 @@ CellRangeGrid CellRangeGrid::fromBricks(const glm::ivec3& dims, const std::vecto
                   glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
   for (const Brick* b : bricks) {
     if (b->empty()) continue;
-    const glm::ivec3 n = b->cellCount(), c0 = b->cellLo();
-    const std::vector<glm::vec2>& local = b->cellRanges();
-    for (int z = 0; z < n.z; ++z)
-      for (int y = 0; y < n.y; ++y)
-        for (int x = 0; x < n.x; ++x) {
-          const glm::ivec3 c = c0 + glm::ivec3(x, y, z);
-          if (glm::any(glm::greaterThanEqual(c, g.count))) continue;
-          const glm::vec2 r = local[(std::size_t(z) * n.y + y) * n.x + x];
-          glm::vec2& out = g.ranges[(std::size_t(c.z) * g.count.y + c.y) * g.count.x + c.x];
-          out.x = std::min(out.x, r.x);
-          out.y = std::max(out.y, r.y);
+    const VoxelBox& owned = b->owned();
+    const VoxelBox& kept = b->stored();
+    // The brick's samples have floors in [owned.lo, owned.hi - 1]; voxel p is touched by samples
+    // with floor p - 1 or p, so it widens the cells of those floors that the brick owns.
+    for (int z = std::max(kept.lo.z, owned.lo.z); z <= std::min(kept.hi.z - 1, owned.hi.z); ++z)
+      for (int y = std::max(kept.lo.y, owned.lo.y); y <= std::min(kept.hi.y - 1, owned.hi.y); ++y)
+        for (int x = std::max(kept.lo.x, owned.lo.x); x <= std::min(kept.hi.x - 1, owned.hi.x); ++x) {
+          const float v = b->voxel(x, y, z).value;
+          const glm::ivec3 p(x, y, z);
+          const glm::ivec3 c0 = glm::max(p - 1, owned.lo) >> kShift;
+          const glm::ivec3 c1 = glm::min(glm::min(p, owned.hi - 1) >> kShift, g.count - 1);
+          for (int cz = c0.z; cz <= c1.z; ++cz)
+            for (int cy = c0.y; cy <= c1.y; ++cy)
+              for (int cx = c0.x; cx <= c1.x; ++cx) {
+                glm::vec2& r = g.ranges[(std::size_t(cz) * g.count.y + cy) * g.count.x + cx];
+                r.x = std::min(r.x, v);
+                r.y = std::max(r.y, v);
+              }
         }
   }
   return g;

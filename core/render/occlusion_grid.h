@@ -1,8 +1,8 @@
 // Occlusion culling across bricks (beyond the paper). Early ray termination stops a whole ray, but
 // a node rendering a brick deep inside the volume cannot see what lies in front of it, so with P
 // nodes it samples behind opaque matter that one node would never reach. Every node therefore
-// holds a small replicated summary of the whole volume, the value range of every 8^3 macro cell
-// (gathered once from the bricks, 1/512 of the voxel count), and skips a ray when the samples in
+// holds a small replicated summary of the whole volume, the value range of every 4^3 cell
+// (gathered once from the bricks, 1/64 of the voxel count), and skips a ray when the samples in
 // front of its brick certainly reach the termination opacity: the single-node ray stops before
 // this brick, so the skipped segment adds nothing to the single-node image either. Exact, not an
 // approximation: it never skips a sample the single-node image uses.
@@ -19,14 +19,20 @@
 
 namespace kdswap {
 
-//! Value range of every macro cell of the whole volume (cells as in Brick: cell c holds the samples
-//! whose floor lies in [8c, 8c + 8)). A cell cut by bricks takes the union of their ranges.
+//! Value range of every cell of the whole volume: cell c holds the samples whose floor lies in
+//! [4c, 4c + 4) and the range covers every voxel they touch. A cell cut by bricks takes the union
+//! of their ranges. Finer than the bricks' 8^3 empty-space cells: an opaque layer a few voxels
+//! thick (a skull, a dense region of a turbulent field) fills whole 4^3 cells far more often than
+//! 8^3 ones, and only cells it fills count as opaque (turbulence at P = 64: 9.4 M -> 6.2 M samples).
+//! Culling only: empty-space skipping keeps 8^3 cells, whose longer jumps suit it better.
 struct CellRangeGrid {
+  static constexpr int kShift = 2;  //!< cells of 2^kShift voxels per axis
+
   glm::ivec3 dims{0};   //!< volume dimensions in voxels
   glm::ivec3 count{0};  //!< cells per axis
   std::vector<glm::vec2> ranges;  //!< (min, max), x fastest; min > max: no sample there
 
-  //! From bricks that together own the whole volume (each brick's own cell ranges).
+  //! From bricks that together own the whole volume (each reads its own voxels).
   static CellRangeGrid fromBricks(const glm::ivec3& dims, const std::vector<const Brick*>& bricks);
 };
 
