@@ -118,12 +118,18 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
     }
   }
   // t / step as a product: the margin (a fiftieth of a step) dwarfs the rounding difference.
+  // The walk keeps its state in scalars and steps a linear cell index: indexing the vectors by a
+  // run-time axis sent them through memory on every cell.
   const float perStep = 1.0f / step;
   float sum = 0.0f, t = t0;
+  float exitX = tMax.x, exitY = tMax.y, exitZ = tMax.z;
+  int cx = cell.x, cy = cell.y, cz = cell.z;
+  const std::ptrdiff_t strideY = count_.x, strideZ = std::ptrdiff_t(count_.x) * count_.y;
+  std::ptrdiff_t index = cz * strideZ + cy * strideY + cx;
   for (;;) {
-    const int axis = tMax.x <= tMax.y ? (tMax.x <= tMax.z ? 0 : 2) : (tMax.y <= tMax.z ? 1 : 2);
-    const float segmentEnd = std::min(tMax[axis], t1);
-    const float depth = depth_[(std::size_t(cell.z) * count_.y + cell.y) * count_.x + cell.x];
+    const int axis = exitX <= exitY ? (exitX <= exitZ ? 0 : 2) : (exitY <= exitZ ? 1 : 2);
+    const float segmentEnd = std::min(axis == 0 ? exitX : axis == 1 ? exitY : exitZ, t1);
+    const float depth = depth_[std::size_t(index)];
     if (depth > 0.0f) {
       const float margin = 0.02f * step + 1e-6f * std::fabs(segmentEnd);
       const float first = std::ceil((t + margin) * perStep - phase);  // first lattice index counted here
@@ -139,10 +145,23 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
       }
     }
     if (segmentEnd >= t1) return kNever;
-    cell[axis] += dir[axis];
-    if (cell[axis] < 0 || cell[axis] >= count_[axis]) return kNever;
+    if (axis == 0) {
+      cx += dir.x;
+      if (cx < 0 || cx >= count_.x) return kNever;
+      index += dir.x;
+      exitX += tDelta.x;
+    } else if (axis == 1) {
+      cy += dir.y;
+      if (cy < 0 || cy >= count_.y) return kNever;
+      index += dir.y * strideY;
+      exitY += tDelta.y;
+    } else {
+      cz += dir.z;
+      if (cz < 0 || cz >= count_.z) return kNever;
+      index += dir.z * strideZ;
+      exitZ += tDelta.z;
+    }
     t = std::max(t, segmentEnd);
-    tMax[axis] += tDelta[axis];
   }
 }
 
