@@ -7,7 +7,6 @@
 #include <limits>
 
 #include <glm/common.hpp>
-#include <glm/vector_relational.hpp>
 
 namespace kdswap {
 namespace {
@@ -25,28 +24,8 @@ CellRangeGrid CellRangeGrid::fromBricks(const glm::ivec3& dims, const std::vecto
   g.count = glm::max((dims - 2) / kCell + 1, glm::ivec3(1));  // samples' floors lie in [0, dims - 2]
   g.ranges.assign(std::size_t(g.count.x) * g.count.y * g.count.z,
                   glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
-  for (const Brick* b : bricks) {
-    if (b->empty()) continue;
-    const VoxelBox& owned = b->owned();
-    const VoxelBox& kept = b->stored();
-    // The brick's samples have floors in [owned.lo, owned.hi - 1]; voxel p is touched by samples
-    // with floor p - 1 or p, so it widens the cells of those floors that the brick owns.
-    for (int z = std::max(kept.lo.z, owned.lo.z); z <= std::min(kept.hi.z - 1, owned.hi.z); ++z)
-      for (int y = std::max(kept.lo.y, owned.lo.y); y <= std::min(kept.hi.y - 1, owned.hi.y); ++y)
-        for (int x = std::max(kept.lo.x, owned.lo.x); x <= std::min(kept.hi.x - 1, owned.hi.x); ++x) {
-          const float v = b->voxel(x, y, z).value;
-          const glm::ivec3 p(x, y, z);
-          const glm::ivec3 c0 = glm::max(p - 1, owned.lo) >> kShift;
-          const glm::ivec3 c1 = glm::min(glm::min(p, owned.hi - 1) >> kShift, g.count - 1);
-          for (int cz = c0.z; cz <= c1.z; ++cz)
-            for (int cy = c0.y; cy <= c1.y; ++cy)
-              for (int cx = c0.x; cx <= c1.x; ++cx) {
-                glm::vec2& r = g.ranges[(std::size_t(cz) * g.count.y + cy) * g.count.x + cx];
-                r.x = std::min(r.x, v);
-                r.y = std::max(r.y, v);
-              }
-        }
-  }
+  for (const Brick* b : bricks)
+    if (!b->empty()) b->widenCellRanges(kShift, glm::ivec3(0), g.count, g.ranges);
   return g;
 }
 

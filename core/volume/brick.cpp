@@ -94,18 +94,23 @@ void Brick::buildCells() {
   cellCount_ = cellHi - cellLo_;
   cellRanges_.assign(std::size_t(cellCount_.x) * cellCount_.y * cellCount_.z,
                      glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
+  widenCellRanges(kCellShift, cellLo_, cellCount_, cellRanges_);
+}
+
+void Brick::widenCellRanges(int shift, const glm::ivec3& cellLo, const glm::ivec3& cellCount,
+                            std::vector<glm::vec2>& ranges) const {
   // Each voxel v touches the cells of samples with floor in {v - 1, v}: cells of v - 1 and v.
   for (int z = std::max(stored_.lo.z, owned_.lo.z); z <= std::min(stored_.hi.z - 1, owned_.hi.z); ++z)
     for (int y = std::max(stored_.lo.y, owned_.lo.y); y <= std::min(stored_.hi.y - 1, owned_.hi.y); ++y)
       for (int x = std::max(stored_.lo.x, owned_.lo.x); x <= std::min(stored_.hi.x - 1, owned_.hi.x); ++x) {
         const float v = voxel(x, y, z).value;
         const glm::ivec3 p(x, y, z);
-        const glm::ivec3 c0 = glm::max((glm::max(p - 1, owned_.lo) >> kCellShift) - cellLo_, glm::ivec3(0));
-        const glm::ivec3 c1 = glm::min((glm::min(p, owned_.hi - 1) >> kCellShift) - cellLo_, cellCount_ - 1);
+        const glm::ivec3 c0 = glm::max((glm::max(p - 1, owned_.lo) >> shift) - cellLo, glm::ivec3(0));
+        const glm::ivec3 c1 = glm::min((glm::min(p, owned_.hi - 1) >> shift) - cellLo, cellCount - 1);
         for (int cz = c0.z; cz <= c1.z; ++cz)
           for (int cy = c0.y; cy <= c1.y; ++cy)
             for (int cx = c0.x; cx <= c1.x; ++cx) {
-              glm::vec2& r = cellRanges_[(std::size_t(cz) * cellCount_.y + cy) * cellCount_.x + cx];
+              glm::vec2& r = ranges[(std::size_t(cz) * cellCount.y + cy) * cellCount.x + cx];
               r.x = std::min(r.x, v);
               r.y = std::max(r.y, v);
             }

@@ -76,6 +76,12 @@ class Brick {
   const glm::ivec3& cellLo() const { return cellLo_; }      //!< first cell index per axis
   const glm::ivec3& cellCount() const { return cellCount_; }
   const std::vector<glm::vec2>& cellRanges() const { return cellRanges_; }
+  //! Widens `ranges` (cells of 2^shift voxels, first cell `cellLo`, `cellCount` per axis, x
+  //! fastest) by the value of every voxel this brick's samples touch, each in the cells of the
+  //! samples that touch it. The brick's own macro cells are built this way, and so is the
+  //! finer whole-volume summary occlusion culling reads.
+  void widenCellRanges(int shift, const glm::ivec3& cellLo, const glm::ivec3& cellCount,
+                       std::vector<glm::vec2>& ranges) const;
 
  private:
   VoxelBox owned_;
