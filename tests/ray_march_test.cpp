@@ -1,5 +1,6 @@
 // The SIMD ray march against the scalar reference: for every pixel of many views, bricks and
-// settings, the same colour bits and the same number of samples. (The image-level invariants are
+// settings, the same colour bits and the same number of samples, ray by ray (castRay) and in the
+// batches render() marches. (The image-level invariants are
 // checked with whichever march the machine selects; this pins the two marches to each other.)
 #include <doctest/doctest.h>
 
@@ -21,6 +22,8 @@ bool sameBits(const Rgba& a, const Rgba& b) { return std::memcmp(&a, &b, sizeof 
 
 struct MarchComparison {
   long pixels = 0, differingPixels = 0, differingCounts = 0;
+  long batchDiffering = 0;  //!< pixels where render()'s batched march differs from castRay
+  bool renderedSamplesDiffer = false;
   std::uint64_t samples = 0;
 };
 
@@ -33,6 +36,11 @@ MarchComparison compareMarches(const Brick& brick, const View& view, const Trans
   scalar.useMarch(&marchScalar);
   vector.useMarch(simd);
   MarchComparison result;
+  // Whole frames go through render(), which marches a tile's rays in batches.
+  RenderCounters renderedA, renderedB;
+  const Image imageA = scalar.render(camera, renderedA), imageB = vector.render(camera, renderedB);
+  result.renderedSamplesDiffer = renderedA.samples != renderedB.samples;
+  std::uint64_t castSamples = 0;
   for (int y = 0; y < 40; ++y)
     for (int x = 0; x < 48; ++x) {
       RenderCounters a, b;
@@ -40,9 +48,14 @@ MarchComparison compareMarches(const Brick& brick, const View& view, const Trans
       const Rgba ca = scalar.castRay(ray, a), cb = vector.castRay(ray, b);
       ++result.pixels;
       result.samples += a.samples;
+      castSamples += a.samples;
       if (!sameBits(ca, cb)) ++result.differingPixels;
       if (a.samples != b.samples) ++result.differingCounts;
+      const Rgba fromA = imageA.sample(x, y);
+      const Rgba fromB = imageB.sample(x, y);
+      if (!sameBits(fromA, ca) || !sameBits(fromB, ca)) ++result.batchDiffering;
     }
+  if (castSamples != renderedA.samples) result.renderedSamplesDiffer = true;
   return result;
 }
 
@@ -87,6 +100,8 @@ TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with
           CAPTURE(brick.owned().lo.x);
           CHECK(r.differingPixels == 0);
           CHECK(r.differingCounts == 0);
+          CHECK(r.batchDiffering == 0);
+          CHECK_FALSE(r.renderedSamplesDiffer);
           totalSamples += r.samples;
         }
   }

@@ -18,11 +18,12 @@ OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, cons
     return;
   }
   first_.resize(std::size_t(rect_.area()));
+  const VoxelRay::Scale scale(spacing, settings);
   tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       std::int32_t* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);
       for (int x = rect_.x; x < rect_.right(); ++x) {
-        const VoxelRay r(camera.ray(x, y), spacing, settings);
+        const VoxelRay r(camera.ray(x, y), scale);
         const long k = grid.occludedFrom(r.origin, r.direction, r.step, r.phase);
         out[x - rect_.x] = k >= long(kNeverStored) ? kNeverStored : std::int32_t(k);
       }

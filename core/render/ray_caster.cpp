@@ -4,6 +4,7 @@
 #include "core/render/ray_caster.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -28,6 +29,7 @@ namespace kdswap {
 namespace {
 
 constexpr int kTileSize = 16;
+constexpr std::size_t kBatch = 64;  //!< rays per call of the march
 // Direction components smaller than this count as parallel to the box's faces: their reciprocal
 // could overflow, and over any distance a ray can travel in a volume they move it by nothing.
 constexpr float kTinyDirection = 1e-30f;
@@ -68,7 +70,12 @@ void RayCaster::useMarch(MarchFunction march) {
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedFrom) const {
   if (!emptySpace_.anyVisible()) return Rgba{};
-  return castVoxelRay(VoxelRay(ray, brick_.spacing(), settings_), -ray.direction, clipBox(), counters, occludedFrom);
+  RaySegment segment;
+  if (!segmentFor(VoxelRay(ray, brick_.spacing(), settings_), -ray.direction, clipBox(), counters, occludedFrom, segment))
+    return Rgba{};
+  Rgba colour;
+  marchFunction_(march_, &segment, 1, &colour, counters.samples);
+  return colour;
 }
 
 RayCaster::ClipBox RayCaster::clipBox() const {
@@ -78,8 +85,8 @@ RayCaster::ClipBox RayCaster::clipBox() const {
 
 // Inlined into render's pixel loop: the ray then stays in registers instead of passing through
 // memory once per pixel and brick.
-KDSWAP_ALWAYS_INLINE inline Rgba RayCaster::castVoxelRay(const VoxelRay& voxelRay, const glm::vec3& toLight, const ClipBox& clip,
-                                                         RenderCounters& counters, long occludedFrom) const {
+KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay, const glm::vec3& toLight, const ClipBox& clip,
+                                                       RenderCounters& counters, long occludedFrom, RaySegment& segment) const {
   const glm::vec3 o = voxelRay.origin;
   const glm::vec3 d = voxelRay.direction;
   const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
@@ -95,7 +102,7 @@ KDSWAP_ALWAYS_INLINE inline Rgba RayCaster::castVoxelRay(const VoxelRay& voxelRa
   float tNear = 0.0f, tFar = std::numeric_limits<float>::max();
   for (int a = 0; a < 3; ++a) {
     if (!(std::fabs(d[a]) >= kTinyDirection)) {  // parallel to this face, as far as the box can tell
-      if (o[a] < clip.lo[a] - margin || o[a] > clip.hi[a] + margin) return Rgba{};
+      if (o[a] < clip.lo[a] - margin || o[a] > clip.hi[a] + margin) return false;
       continue;
     }
     float t1 = (clip.lo[a] - margin - o[a]) * inverse[a], t2 = (clip.hi[a] + margin - o[a]) * inverse[a];
@@ -103,7 +110,7 @@ KDSWAP_ALWAYS_INLINE inline Rgba RayCaster::castVoxelRay(const VoxelRay& voxelRa
     tNear = std::max(tNear, t1);
     tFar = std::min(tFar, t2);
   }
-  if (tNear > tFar) return Rgba{};
+  if (tNear > tFar) return false;
   ++counters.rays;
 
   const float step = voxelRay.step;
@@ -112,7 +119,7 @@ KDSWAP_ALWAYS_INLINE inline Rgba RayCaster::castVoxelRay(const VoxelRay& voxelRa
   const long kBegin = std::max(0L, long(std::floor(tNear / step - phase)) - 1);
   if (kBegin >= occludedFrom) {  // the single-node ray ends before this brick
     ++counters.occluded;
-    return Rgba{};
+    return false;
   }
   const long kEnd = std::min(long(std::ceil(tFar / step - phase)) + 1, occludedFrom - 1);
 
@@ -128,12 +135,27 @@ KDSWAP_ALWAYS_INLINE inline Rgba RayCaster::castVoxelRay(const VoxelRay& voxelRa
   while (kFirst <= kLast && !owned(samplePoint(kFirst))) ++kFirst;
   while (kLast >= kFirst && !owned(samplePoint(kLast))) --kLast;
 
+  if (kFirst > kLast) return false;  // no owned sample (the march would take none either)
   // The light is at the eye.
-  const RaySegment segment{o, d, inverse, step, phase, kFirst, kLast, toLight};
-  std::uint64_t samples = 0;
-  const Rgba colour = marchFunction_(march_, segment, samples);
-  counters.samples += samples;
-  return colour;
+  segment = RaySegment{o, d, inverse, step, phase, kFirst, kLast, toLight};
+  return true;
+}
+
+long RayCaster::firstLatticeIndexBound(const Camera& camera) const {
+  // Every ray's t at a point p is at least dot(p - eye, forward): the distance itself for a
+  // perspective ray (unit direction), exactly it for an orthographic one (origins lie in the plane
+  // through the eye). Over a box the dot product is least at a corner. The box is grown by a voxel
+  // and the index lowered by three for the clip's margins and rounding: a weaker bound is still a bound.
+  const glm::vec3 spacing = brick_.spacing();
+  const glm::vec3 lo = (emptySpace_.visibleLo() - 1.0f) * spacing, hi = (emptySpace_.visibleHi() + 1.0f) * spacing;
+  const glm::vec3 toLo = lo - camera.eye(), toHi = hi - camera.eye(), f = camera.forward();
+  const float tLow = std::min(toLo.x * f.x, toHi.x * f.x) + std::min(toLo.y * f.y, toHi.y * f.y) +
+                     std::min(toLo.z * f.z, toHi.z * f.z);
+  const float step = VoxelRay::worldStep(spacing, settings_);
+  if (!(tLow > 0.0f) || !(step > 0.0f)) return 0;  // the eye is at or inside the box's slab: no bound
+  // Rounding of the t values compared with: a relative slack far above float error.
+  const double index = double(tLow) * (1.0 - 1e-4) / double(step) - 1.0;  // phase < 1
+  return index >= double(std::numeric_limits<long>::max() / 2) ? 0 : std::max(0L, long(std::floor(index)) - 3);
 }
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
@@ -143,6 +165,8 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   Image image(rect);
   if (rect.empty()) return image;
   const ClipBox clip = clipBox();
+  const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera) : 0;
+  const VoxelRay::Scale scale(spacing, settings_);
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).
@@ -152,12 +176,30 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
         [&](const tbb::blocked_range2d<int>& tile) {
           const double start = nowSeconds();
           RenderCounters& local = perThread.local();
+          // The tile's rays that reach owned samples, marched in one batch; other pixels stay clear.
+          std::array<RaySegment, kBatch> segments;
+          std::array<Rgba, kBatch> colours;
+          std::array<Rgba*, kBatch> pixels;
+          std::size_t pending = 0;
+          const auto march = [&] {
+            marchFunction_(march_, segments.data(), pending, colours.data(), local.samples);
+            for (std::size_t i = 0; i < pending; ++i) *pixels[i] = colours[i];
+            pending = 0;
+          };
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
             for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+              const long occludedFrom = occlusion_ ? occlusion_->occludedFrom(x, y) : OcclusionGrid::kNever;
+              if (occludedFrom <= firstPossible) {  // ends before the brick: no ray to set up
+                ++local.rays, ++local.occluded;
+                continue;
+              }
               const Ray ray = camera.ray(x, y);
-              image.at(x, y) = castVoxelRay(VoxelRay(ray, spacing, settings_), -ray.direction, clip, local,
-                                            occlusion_ ? occlusion_->occludedFrom(x, y) : OcclusionGrid::kNever);
+              if (!segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom, segments[pending]))
+                continue;
+              pixels[pending] = &image.at(x, y);
+              if (++pending == kBatch) march();
             }
+          if (pending > 0) march();
           local.seconds += nowSeconds() - start;
         });
   });

@@ -22,7 +22,7 @@
 namespace kdswap {
 
 struct RenderCounters {
-  std::uint64_t rays = 0;     //!< rays that met the brick
+  std::uint64_t rays = 0;     //!< rays that met the brick (culled ones counted, even if they would miss it)
   std::uint64_t samples = 0;  //!< samples taken inside the brick
   std::uint64_t occluded = 0; //!< rays skipped: opaque matter in front of the brick ends them
   double seconds = 0.0;       //!< work time, summed over tiles (time on one processor)
@@ -55,8 +55,13 @@ class RayCaster {
     float hiMagnitude;
   };
   ClipBox clipBox() const;
-  Rgba castVoxelRay(const VoxelRay& ray, const glm::vec3& toLight, const ClipBox& clip, RenderCounters& counters,
-                    long occludedFrom) const;
+  //! A lattice index no ray of `camera` reaches the brick before (it starts at or beyond it):
+  //! where the occlusion map ends the ray at or before this index, the pixel needs no ray at all.
+  long firstLatticeIndexBound(const Camera& camera) const;
+  //! The ray's owned samples in this brick as a segment to march; false when it has none to take
+  //! (misses the visible box, ends before it, or no lattice point falls inside).
+  bool segmentFor(const VoxelRay& ray, const glm::vec3& toLight, const ClipBox& clip, RenderCounters& counters,
+                  long occludedFrom, RaySegment& segment) const;
 
   const Brick& brick_;
   const TransferTable& table_;

@@ -6,7 +6,9 @@
 
 namespace kdswap {
 
-Rgba marchScalar(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
+namespace {
+
+Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
   std::size_t lastJumpedCell = std::size_t(-1);
   for (long k = s.first; k <= s.last; ++k) {
@@ -24,6 +26,13 @@ Rgba marchScalar(const MarchContext& m, const RaySegment& s, std::uint64_t& samp
     if (result.add(shadeSample(m.shading, s.toLight, m.voxels, p, floor), m.stopTransmittance)) break;
   }
   return result.rgba();
+}
+
+}  // namespace
+
+void marchScalar(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
+                 std::uint64_t& samples) {
+  for (std::size_t i = 0; i < count; ++i) colours[i] = marchOne(m, segments[i], samples);
 }
 
 MarchFunction selectedMarchFunction() {

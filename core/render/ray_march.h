@@ -78,11 +78,14 @@ struct FrontToBack {
   Rgba rgba() const { return Rgba{r, g, b, 1.0f - transmittance}; }
 };
 
-//! Marches `segment`; adds the samples taken (those in cells that can be visible, up to the one
-//! that ends the ray) to `samples`.
-using MarchFunction = Rgba (*)(const MarchContext& context, const RaySegment& segment, std::uint64_t& samples);
+//! Marches `count` segments of one brick: colours[i] is segment i's colour. Adds the samples taken
+//! (those in cells that can be visible, up to the one that ends each ray) to `samples`. A batch
+//! (a tile's rays) per call: the brick's constants are set up once per batch, not once per ray.
+using MarchFunction = void (*)(const MarchContext& context, const RaySegment* segments, std::size_t count,
+                               Rgba* colours, std::uint64_t& samples);
 
-Rgba marchScalar(const MarchContext& context, const RaySegment& segment, std::uint64_t& samples);
+void marchScalar(const MarchContext& context, const RaySegment* segments, std::size_t count, Rgba* colours,
+                 std::uint64_t& samples);
 //! The AVX2 march, or null when this build or CPU has no AVX2. It needs local voxel indices below
 //! 2^31 (checked by the caller: bricks larger than that use the scalar march).
 MarchFunction avx2MarchFunction();

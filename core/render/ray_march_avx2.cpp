@@ -202,22 +202,39 @@ KDSWAP_AVX2 bool flush(const MarchContext& m, const glm::vec3& toLight, PendingS
   return compositeInOrder(result, shaded, n, m.stopTransmittance, samples);
 }
 
-KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
+//! A brick's march constants in registers, set up once per batch of rays.
+struct BrickConstants {
+  __m256i lane, cellLoX, cellLoY, cellLoZ, countX, countY, loX, loY, loZ, sy, sz;
+  const Voxel* data;
+};
+
+KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
+  BrickConstants c;
+  c.lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  c.cellLoX = _mm256_set1_epi32(m.cellLo.x), c.cellLoY = _mm256_set1_epi32(m.cellLo.y),
+  c.cellLoZ = _mm256_set1_epi32(m.cellLo.z);
+  c.countX = _mm256_set1_epi32(m.cellCount.x), c.countY = _mm256_set1_epi32(m.cellCount.y);
+  c.loX = _mm256_set1_epi32(m.storedLo.x), c.loY = _mm256_set1_epi32(m.storedLo.y), c.loZ = _mm256_set1_epi32(m.storedLo.z);
+  c.sy = _mm256_set1_epi32(int(m.voxels.sy)), c.sz = _mm256_set1_epi32(int(m.voxels.sz));
+  c.data = m.voxels.data;
+  return c;
+}
+
+KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchContext& m, const BrickConstants& bc,
+                                                                const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
   PendingSamples pending;
   std::size_t lastJumpedCell = std::size_t(-1);
-  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i lane = bc.lane;
   const __m256 ox = _mm256_set1_ps(s.origin.x), oy = _mm256_set1_ps(s.origin.y), oz = _mm256_set1_ps(s.origin.z);
   const __m256 dx = _mm256_set1_ps(s.direction.x), dy = _mm256_set1_ps(s.direction.y),
                dz = _mm256_set1_ps(s.direction.z);
   const __m256 phase = _mm256_set1_ps(s.phase), step = _mm256_set1_ps(s.step);
-  const __m256i cellLoX = _mm256_set1_epi32(m.cellLo.x), cellLoY = _mm256_set1_epi32(m.cellLo.y),
-                cellLoZ = _mm256_set1_epi32(m.cellLo.z);
-  const __m256i countX = _mm256_set1_epi32(m.cellCount.x), countY = _mm256_set1_epi32(m.cellCount.y);
-  const __m256i loX = _mm256_set1_epi32(m.storedLo.x), loY = _mm256_set1_epi32(m.storedLo.y),
-                loZ = _mm256_set1_epi32(m.storedLo.z);
-  const __m256i sy = _mm256_set1_epi32(int(m.voxels.sy)), sz = _mm256_set1_epi32(int(m.voxels.sz));
-  const Voxel* const data = m.voxels.data;
+  const __m256i cellLoX = bc.cellLoX, cellLoY = bc.cellLoY, cellLoZ = bc.cellLoZ;
+  const __m256i countX = bc.countX, countY = bc.countY;
+  const __m256i loX = bc.loX, loY = bc.loY, loZ = bc.loZ;
+  const __m256i sy = bc.sy, sz = bc.sz;
+  const Voxel* const data = bc.data;
 
   long k = s.first;
   while (k <= s.last) {
@@ -284,6 +301,14 @@ KDSWAP_AVX2 Rgba marchAvx2(const MarchContext& m, const RaySegment& s, std::uint
   }
   flush(m, s.toLight, pending, result, samples);
   return result.rgba();
+}
+
+KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
+                           std::uint64_t& samples) {
+  const BrickConstants constants = brickConstants(m);
+  std::uint64_t taken = 0;  // a local: the callee's increments stay in a register
+  for (std::size_t i = 0; i < count; ++i) colours[i] = marchRay(m, constants, segments[i], taken);
+  samples += taken;
 }
 
 }  // namespace
