@@ -191,3 +191,46 @@ TEST_CASE("distributed images with occlusion culling equal the single-node image
       CHECK(culled.stats.samples() < all.stats.samples());
     }
 }
+
+TEST_CASE("occlusion culling rests for a while after a frame where it culled little, then resumes") {
+  auto volume = makeBlock(40);
+  FrameRequest opaque;
+  opaque.width = 96;
+  opaque.height = 80;
+  opaque.view.azimuthDeg = 15.0f;
+  opaque.transfer = loadTransferFunction("grayscale");
+  opaque.settings.stepVoxels = 0.8f;
+  // Faint: every cell can add some opacity (so the map is built) but no ray gathers 0.99 of it.
+  FrameRequest faint = opaque;
+  faint.transfer = TransferFunction::ramp(0.0f, 0.02f);
+  ClusterOptions options;
+  options.nodes = 8;
+  VirtualCluster cluster(*volume, options);
+  const auto culledPairs = [](const FrameResult& r) {
+    std::uint64_t occluded = 0;
+    for (const NodeReport& n : r.stats.perNode) occluded += n.occluded;
+    return occluded;
+  };
+  const auto rayPairs = [](const FrameResult& r) {
+    std::uint64_t rays = 0;
+    for (const NodeReport& n : r.stats.perNode) rays += n.rays;
+    return rays;
+  };
+
+  const FrameResult first = cluster.renderFrame(opaque);
+  const std::uint64_t opaqueCulled = culledPairs(first);
+  CHECK(double(opaqueCulled) > 0.06 * double(rayPairs(first)));  // culling pays here (over 5% of pairs): it stays on
+  CHECK(culledPairs(cluster.renderFrame(opaque)) == opaqueCulled);
+
+  const FrameResult faintFrame = cluster.renderFrame(faint);
+  CHECK(rayPairs(faintFrame) > 1000);
+  CHECK(culledPairs(faintFrame) == 0);
+  // The next frames skip the map, even where it would cull: their images are the same regardless.
+  for (int frame = 0; frame < 15; ++frame) {
+    const FrameResult rested = cluster.renderFrame(opaque);
+    CAPTURE(frame);
+    CHECK(culledPairs(rested) == 0);
+    CHECK(test::diffAgainstReference(*volume, opaque, rested.image) <= 1e-5f + (1.0f - opaque.settings.earlyTermination));
+  }
+  CHECK(culledPairs(cluster.renderFrame(opaque)) == opaqueCulled);  // tried again, and kept
+}

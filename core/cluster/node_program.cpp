@@ -120,6 +120,7 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
     report.renderSeconds += counters.seconds;
     report.rays += counters.rays;
     report.samples += counters.samples;
+    report.occluded += counters.occluded;
     report.bricks.push_back({brick, counters.seconds, counters.rays, counters.samples});
   }
 
@@ -176,6 +177,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     report.renderSeconds = counters.seconds;
     report.rays = counters.rays;
     report.samples = counters.samples;
+    report.occluded = counters.occluded;
     if (cells) cells->push_back(PhaseCell{"render", -1, partial.rect(), partial, 0});
   }
   observer.noteImage(partial);

@@ -19,6 +19,11 @@
 namespace kdswap {
 namespace {
 
+// Occlusion culling's rest rule (renderFrame): below this share of ray-brick pairs culled, its map
+// costs more than it saves; so many frames then go without it.
+constexpr double kMinCulledShare = 0.05;
+constexpr int kCullingRestFrames = 15;
+
 // Aborts the frame when no message moves and no node finishes for `limit` seconds, naming who
 // waits on whom: every wait can end.
 class StallWatchdog {
@@ -224,7 +229,16 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   const double start = nowSeconds();
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
   std::optional<OcclusionMap> occlusion;
-  if (request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1) {
+  // Culling never changes an image, only the work: its map (one march per pixel) pays where
+  // opaque matter hides much of the bricks behind it (turbulence: 64% of ray-brick pairs culled,
+  // 17.8 M -> 6.2 M samples) and costs ~8% of the frame where little is hidden (CT head, default
+  // scene: ~1%). After a frame that culled under kMinCulledShare of its pairs, the next
+  // kCullingRestFrames frames skip it; then it is tried again (the view or transfer function may
+  // have changed).
+  const bool culling = request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1;
+  if (culling && cullingRestFrames_ > 0) {
+    --cullingRestFrames_;
+  } else if (culling) {
     const glm::vec2 map = normalisingScaleBias(plan.valueRange);
     const OcclusionGrid grid(cellRanges_, plan.table, map.x, map.y, request.settings.earlyTermination);
     if (grid.active())
@@ -269,6 +283,12 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
         reports[std::size_t(rank)] = runNodeFrame(nodes_[std::size_t(rank)], comm, plan, result.phases.get());
       },
       false, {});
+
+  if (plan.occlusion) {
+    std::uint64_t rays = 0, occluded = 0;
+    for (const NodeReport& r : reports) rays += r.rays, occluded += r.occluded;
+    if (double(occluded) < kMinCulledShare * double(rays)) cullingRestFrames_ = kCullingRestFrames;
+  }
 
   // Gather: every tile is in the host's mailbox by now.
   const double gatherStart = nowSeconds();

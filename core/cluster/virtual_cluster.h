@@ -124,6 +124,9 @@ class VirtualCluster {
   //! Value range of every macro cell of the whole volume, gathered once from the nodes' bricks:
   //! the replicated summary occlusion culling reads (1/64 of the voxel count).
   CellRangeGrid cellRanges_;
+  //! Frames left that skip occlusion culling: its per-frame map costs more than it saves where
+  //! little is hidden (renderFrame).
+  int cullingRestFrames_ = 0;
   FaultPlan fault_;  //!< armed for the next frame only
 };
 

@@ -28,6 +28,7 @@ struct NodeReport {
   //! divide measured work by it; measured figures stay as measured.
   double speed = 1.0;
   std::uint64_t rays = 0, samples = 0;
+  std::uint64_t occluded = 0;     //!< of the rays: skipped by occlusion culling
   std::uint64_t privateBytes = 0; //!< brick (voxels + gradients) + largest image held
   std::vector<PhaseStats> phases; //!< compositing phases, in order (render not included)
   //! Over-decomposition: every brick this node rendered this frame.
