@@ -116,12 +116,12 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay,
   const float step = voxelRay.step;
   const float phase = voxelRay.phase;
   // One lattice index of slack on each side: the ownership test below is the exact rule.
-  const long kBegin = std::max(0L, long(std::floor(tNear / step - phase)) - 1);
+  const long kBegin = std::max(0L, long(std::floor(tNear * voxelRay.inverseStep - phase)) - 1);
   if (kBegin >= occludedFrom) {  // the single-node ray ends before this brick
     ++counters.occluded;
     return false;
   }
-  const long kEnd = std::min(long(std::ceil(tFar / step - phase)) + 1, occludedFrom - 1);
+  const long kEnd = std::min(long(std::ceil(tFar * voxelRay.inverseStep - phase)) + 1, occludedFrom - 1);
 
   // The owned samples form one run of lattice indices: each coordinate of p = o + d t is monotone
   // in k (rounding is monotone), so membership of the half-open box [lo, hi) is an interval. Its
@@ -137,7 +137,7 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay,
 
   if (kFirst > kLast) return false;  // no owned sample (the march would take none either)
   // The light is at the eye.
-  segment = RaySegment{o, d, inverse, step, phase, kFirst, kLast, toLight};
+  segment = RaySegment{o, d, inverse, step, phase, kFirst, kLast, toLight, voxelRay.inverseStep};
   return true;
 }
 

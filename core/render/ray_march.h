@@ -43,6 +43,7 @@ struct RaySegment {
   float step, phase;
   long first, last;
   glm::vec3 toLight;  //!< unit vector to the light (at the eye)
+  float inverseStep;  //!< 1 / step
 
   glm::vec3 point(long k) const { return origin + direction * ((float(k) + phase) * step); }
 
@@ -56,7 +57,7 @@ struct RaySegment {
     for (int a = 0; a < 3; ++a)
       if (direction[a] != 0.0f)
         tExit = std::min(tExit, ((direction[a] > 0.0f ? cHi[a] : cLo[a]) - origin[a]) * inverseDirection[a]);
-    return long(std::floor(tExit / step - phase)) - 1;
+    return long(std::floor(tExit * inverseStep - phase)) - 1;
   }
 };
 

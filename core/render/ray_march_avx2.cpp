@@ -174,18 +174,26 @@ struct PendingSamples {
 //! Samples with zero opacity change nothing (FrontToBack::add), so only contributing lanes are visited.
 KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopTransmittance,
                                          std::uint64_t& samples) {
-  FrontToBack local = result;
+  // FrontToBack::add, step by step, on scalar locals: kept as one struct the accumulator was
+  // repacked into a vector register on every sample.
+  float r = result.r, g = result.g, b = result.b, transmittance = result.transmittance;
   bool done = false;
   int counted = n;
   for (int bits = s.contributing & ((1 << n) - 1); bits != 0; bits &= bits - 1) {
     const int j = __builtin_ctz(bits);
-    if (local.add(ShadedSample{s.r[j], s.g[j], s.b[j], s.a[j]}, stopTransmittance)) {
+    const float a = s.a[j];  // contributing: !(a <= 0), so add() would not return early
+    const float w = transmittance * a;
+    r += w * s.r[j];
+    g += w * s.g[j];
+    b += w * s.b[j];
+    transmittance *= 1.0f - a;
+    if (transmittance <= stopTransmittance) {
       counted = j + 1;  // the scalar march counts up to the sample that ends the ray
       done = true;
       break;
     }
   }
-  result = local;
+  result.r = r, result.g = g, result.b = b, result.transmittance = transmittance;
   samples += std::uint64_t(counted);
   return done;
 }

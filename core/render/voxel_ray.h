@@ -17,22 +17,27 @@ struct VoxelRay {
   glm::vec3 direction;  //!< voxel coordinates per unit of the world ray's t
   float step;           //!< t between samples: sample k sits at t = (k + phase) * step
   float phase;
+  float inverseStep;    //!< 1 / step, for index estimates that a rounding either way cannot spoil
 
   //! What turns world rays into voxel rays for one volume and settings, computed once: a ray then
   //! costs multiplies only (three divisions per ray and brick were a large part of the setup).
   struct Scale {
     glm::vec3 inverseSpacing;
-    float step;
+    float step, inverseStep;
     bool jitter;
     Scale(const glm::vec3& spacing, const RenderSettings& settings)
-        : inverseSpacing(1.0f / spacing), step(worldStep(spacing, settings)), jitter(settings.jitter) {}
+        : inverseSpacing(1.0f / spacing),
+          step(worldStep(spacing, settings)),
+          inverseStep(1.0f / step),
+          jitter(settings.jitter) {}
   };
 
   VoxelRay(const Ray& ray, const Scale& scale)
       : origin(ray.origin * scale.inverseSpacing),
         direction(ray.direction * scale.inverseSpacing),
         step(scale.step),
-        phase(scale.jitter ? ray.offset : 0.0f) {}
+        phase(scale.jitter ? ray.offset : 0.0f),
+        inverseStep(scale.inverseStep) {}
   VoxelRay(const Ray& ray, const glm::vec3& spacing, const RenderSettings& settings)
       : VoxelRay(ray, Scale(spacing, settings)) {}
 
