@@ -1,6 +1,7 @@
 // Virtual cluster: runs the node program as P oneTBB tasks; a watchdog ends stalled frames.
 #include "core/cluster/virtual_cluster.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -222,6 +223,20 @@ void VirtualCluster::runOnNodes(Body&& body, bool withHostTask, const std::funct
   if (network_.aborted()) throw Error(network_.abortReason());
 }
 
+const OcclusionGrid& VirtualCluster::occlusionGridFor(const TransferTable& table, float scale, float bias, float stopAt) {
+  OcclusionGridCache& c = occlusionGrid_;
+  const glm::vec4* entries = table.entries();
+  const std::size_t count = std::size_t(TransferTable::kSize) + 1;
+  const bool same = c.grid && c.scale == scale && c.bias == bias && c.stopAt == stopAt && c.entries.size() == count &&
+                    std::equal(c.entries.begin(), c.entries.end(), entries);
+  if (!same) {
+    c.grid.emplace(cellRanges_, table, scale, bias, stopAt);
+    c.entries.assign(entries, entries + count);
+    c.scale = scale, c.bias = bias, c.stopAt = stopAt;
+  }
+  return *c.grid;
+}
+
 FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   if (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384)
     throw Error("image size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
@@ -240,7 +255,7 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
     --cullingRestFrames_;
   } else if (culling) {
     const glm::vec2 map = normalisingScaleBias(plan.valueRange);
-    const OcclusionGrid grid(cellRanges_, plan.table, map.x, map.y, request.settings.earlyTermination);
+    const OcclusionGrid& grid = occlusionGridFor(plan.table, map.x, map.y, request.settings.earlyTermination);
     if (grid.active())
       arena_.execute([&] {
         occlusion.emplace(grid, plan.camera, glm::vec3(info_.dims - 1) * info_.spacing, info_.spacing,

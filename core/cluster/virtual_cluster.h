@@ -6,10 +6,12 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
+#include <glm/vec4.hpp>
 #include <oneapi/tbb/task_arena.h>
 
 #include "core/cluster/fault_plan.h"
@@ -22,6 +24,7 @@
 #include "core/metrics/network_model.h"
 #include "core/partition/brick_layout.h"
 #include "core/partition/kd_tree.h"
+#include "core/render/occlusion_grid.h"
 #include "core/transfer/transfer_function.h"
 #include "core/volume/volume_source.h"
 
@@ -124,6 +127,16 @@ class VirtualCluster {
   //! Value range of every macro cell of the whole volume, gathered once from the nodes' bricks:
   //! the replicated summary occlusion culling reads (1/64 of the voxel count).
   CellRangeGrid cellRanges_;
+  //! Occlusion culling's optical depths per cell depend on the transfer table, the value mapping and
+  //! the termination opacity only: kept while those stay, so an orbiting view rebuilds nothing
+  //! (5.7 ms a frame at 256^3, one thread).
+  struct OcclusionGridCache {
+    std::vector<glm::vec4> entries;
+    float scale = 0.0f, bias = 0.0f, stopAt = 0.0f;
+    std::optional<OcclusionGrid> grid;
+  };
+  const OcclusionGrid& occlusionGridFor(const TransferTable& table, float scale, float bias, float stopAt);
+  OcclusionGridCache occlusionGrid_;
   //! Frames left that skip occlusion culling: its per-frame map costs more than it saves where
   //! little is hidden (renderFrame).
   int cullingRestFrames_ = 0;
