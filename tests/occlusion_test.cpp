@@ -101,6 +101,52 @@ TEST_CASE("occlusion bound: every ray it culls is one the single-node ray ends b
   }
 }
 
+TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get the single ray's index") {
+  for (const std::string data : {"block", "phantom:96", "turbulence:96"}) {
+    auto volume = openData(data);
+    const Brick whole = wholeVolumeBrick(*volume);
+    const glm::ivec3 dims = volume->info().dims;
+    const glm::vec2 map = normalisingScaleBias(resolveValueRange(RenderSettings{}, volume->info()));
+    for (const float step : {0.5f, 1.0f}) {
+      const TransferTable table(loadTransferFunction("grayscale"), step);
+      const OcclusionGrid grid(CellRangeGrid::fromBricks(dims, {&whole}), table, map.x, map.y, 0.95f);
+      REQUIRE(grid.active());
+      // Bundles of nearly parallel rays (as a row of pixels), axis-parallel ones and rays that miss.
+      std::mt19937 rng(11);
+      std::uniform_real_distribution<float> u(0.0f, 1.0f);
+      constexpr int kRays = 203;  // not a multiple of eight: the tail runs too
+      std::vector<glm::vec3> origins, directions;
+      std::vector<float> phases;
+      const glm::vec3 centre = glm::vec3(dims - 1) * 0.5f;
+      int ending = 0;
+      for (int bundle = 0; bundle < 24; ++bundle) {
+        glm::vec3 axis = glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
+        if (bundle % 6 == 0) axis = glm::vec3(bundle % 12 == 0 ? 1.0f : 0.0f, 0.0f, bundle % 12 == 0 ? 0.0f : -1.0f);
+        const glm::vec3 eye = centre - axis * float(dims.x + dims.y + dims.z);
+        origins.clear(), directions.clear(), phases.clear();
+        for (int i = 0; i < kRays; ++i) {
+          const glm::vec3 target = centre + (glm::vec3(u(rng), u(rng), u(rng)) - 0.5f) * glm::vec3(dims) * 1.3f;
+          origins.push_back(eye);
+          directions.push_back(bundle % 6 == 0 ? axis : glm::normalize(target - eye));
+          phases.push_back(u(rng));
+        }
+        std::vector<long> batched(kRays);
+        grid.occludedFrom(origins.data(), directions.data(), phases.data(), kRays, step, batched.data());
+        for (int i = 0; i < kRays; ++i) {
+          const long single = grid.occludedFrom(origins[std::size_t(i)], directions[std::size_t(i)], step, phases[std::size_t(i)]);
+          CAPTURE(data);
+          CAPTURE(bundle);
+          CAPTURE(i);
+          CHECK(batched[std::size_t(i)] == single);
+          ending += single != OcclusionGrid::kNever;
+        }
+      }
+      CAPTURE(data);
+      CHECK(ending > 200);  // not only rays that never end
+    }
+  }
+}
+
 TEST_CASE("occlusion bound: an opaque wall eight voxels thick is credited, wherever it sits in the cells") {
   // An 8^3 cell's samples touch 9 voxels per axis, so an 8-voxel wall shares every such cell with
   // the empty space around it; it fills some 4^3 cell (5 voxels) at any offset, and the summary

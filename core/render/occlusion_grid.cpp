@@ -63,12 +63,34 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
 }
 
 long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float step, float phase) const {
-  if (!active_ || !(step > 0.0f)) return kNever;
+  Walk w;
+  return startWalk(o, d, step, phase, w) ? walk(w, step) : kNever;
+}
+
+void OcclusionGrid::occludedFrom(const glm::vec3* origins, const glm::vec3* directions, const float* phases, int count,
+                                 float step, long* out) const {
+  constexpr int kLanes = 8;
+  for (int first = 0; first < count; first += kLanes) {
+    const int n = std::min(kLanes, count - first);
+    Walk walks[kLanes];
+    bool started[kLanes] = {};
+    int live = 0;
+    for (int i = 0; i < n; ++i) {
+      started[i] = startWalk(origins[first + i], directions[first + i], step, phases[first + i], walks[i]);
+      live += started[i];
+    }
+    if (n == kLanes && live > 1 && walk8(walks, started, step, out + first)) continue;
+    for (int i = 0; i < n; ++i) out[first + i] = started[i] ? walk(walks[i], step) : kNever;
+  }
+}
+
+bool OcclusionGrid::startWalk(const glm::vec3& o, const glm::vec3& d, float step, float phase, Walk& w) const {
+  if (!active_ || !(step > 0.0f)) return false;
   // The part of the ray inside the box of cells that add depth (samples elsewhere add none).
   float t0 = 0.0f, t1 = std::numeric_limits<float>::max();
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0.0f) {
-      if (o[a] < depthLo_[a] || o[a] > depthHi_[a]) return kNever;
+      if (o[a] < depthLo_[a] || o[a] > depthHi_[a]) return false;
       continue;
     }
     float ta = (depthLo_[a] - o[a]) / d[a], tb = (depthHi_[a] - o[a]) / d[a];
@@ -76,7 +98,7 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
   }
-  if (!(t1 - t0 > 2.0f * step)) return kNever;
+  if (!(t1 - t0 > 2.0f * step)) return false;
 
   // 3D DDA over the cells from t0 to t1. Each segment counts the lattice points at least a margin
   // inside it, so rounding in positions and cell boundaries never counts a sample twice or in the
@@ -96,15 +118,35 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
       tDelta[a] = float(kCell) / std::fabs(d[a]);
     }
   }
-  // t / step as a product: the margin (a fiftieth of a step) dwarfs the rounding difference.
   // The walk keeps its state in scalars and steps a linear cell index: indexing the vectors by a
   // run-time axis sent them through memory on every cell.
+  w.t = t0, w.t1 = t1;
+  w.exitX = tMax.x, w.exitY = tMax.y, w.exitZ = tMax.z;
+  w.deltaX = tDelta.x, w.deltaY = tDelta.y, w.deltaZ = tDelta.z;
+  w.phase = phase;
+  w.cx = cell.x, w.cy = cell.y, w.cz = cell.z;
+  w.dirX = dir.x, w.dirY = dir.y, w.dirZ = dir.z;
+  w.index = (std::ptrdiff_t(cell.z) * count_.y + cell.y) * count_.x + cell.x;
+  return true;
+}
+
+long OcclusionGrid::reachedAt(float sum, float depth, float first, float samples) const {
+  // The fewest samples of this segment that reach the threshold, by the same float sum.
+  float n = std::max(1.0f, std::ceil((threshold_ - sum) / depth));
+  while (n < samples && sum + depth * n < threshold_) n += 1.0f;
+  return long(first) + long(n);
+}
+
+long OcclusionGrid::walk(Walk w, float step) const {
+  // t / step as a product: the margin (a fiftieth of a step) dwarfs the rounding difference.
   const float perStep = 1.0f / step;
-  float sum = 0.0f, t = t0;
-  float exitX = tMax.x, exitY = tMax.y, exitZ = tMax.z;
-  int cx = cell.x, cy = cell.y, cz = cell.z;
+  const float phase = w.phase;
+  float sum = 0.0f, t = w.t;
+  const float t1 = w.t1;
+  float exitX = w.exitX, exitY = w.exitY, exitZ = w.exitZ;
+  int cx = w.cx, cy = w.cy, cz = w.cz;
   const std::ptrdiff_t strideY = count_.x, strideZ = std::ptrdiff_t(count_.x) * count_.y;
-  std::ptrdiff_t index = cz * strideZ + cy * strideY + cx;
+  std::ptrdiff_t index = w.index;
   for (;;) {
     const int axis = exitX <= exitY ? (exitX <= exitZ ? 0 : 2) : (exitY <= exitZ ? 1 : 2);
     const float segmentEnd = std::min(axis == 0 ? exitX : axis == 1 ? exitY : exitZ, t1);
@@ -114,31 +156,26 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
       const float first = std::ceil((t + margin) * perStep - phase);  // first lattice index counted here
       const float samples = std::ceil((segmentEnd - margin) * perStep - phase) - first;
       if (samples > 0.0f) {
-        if (sum + depth * samples >= threshold_) {
-          // The fewest samples of this segment that reach the threshold, by the same float sum.
-          float n = std::max(1.0f, std::ceil((threshold_ - sum) / depth));
-          while (n < samples && sum + depth * n < threshold_) n += 1.0f;
-          return long(first) + long(n);
-        }
+        if (sum + depth * samples >= threshold_) return reachedAt(sum, depth, first, samples);
         sum += depth * samples;
       }
     }
     if (segmentEnd >= t1) return kNever;
     if (axis == 0) {
-      cx += dir.x;
+      cx += w.dirX;
       if (cx < 0 || cx >= count_.x) return kNever;
-      index += dir.x;
-      exitX += tDelta.x;
+      index += w.dirX;
+      exitX += w.deltaX;
     } else if (axis == 1) {
-      cy += dir.y;
+      cy += w.dirY;
       if (cy < 0 || cy >= count_.y) return kNever;
-      index += dir.y * strideY;
-      exitY += tDelta.y;
+      index += w.dirY * strideY;
+      exitY += w.deltaY;
     } else {
-      cz += dir.z;
+      cz += w.dirZ;
       if (cz < 0 || cz >= count_.z) return kNever;
-      index += dir.z * strideZ;
-      exitZ += tDelta.z;
+      index += w.dirZ * strideZ;
+      exitZ += w.deltaZ;
     }
     t = std::max(t, segmentEnd);
   }

@@ -22,10 +22,20 @@ OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, cons
   tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       std::int32_t* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);
-      for (int x = rect_.x; x < rect_.right(); ++x) {
-        const VoxelRay r(camera.ray(x, y), scale);
-        const long k = grid.occludedFrom(r.origin, r.direction, r.step, r.phase);
-        out[x - rect_.x] = k >= long(kNeverStored) ? kNeverStored : std::int32_t(k);
+      // Runs of a row's pixels walk together (eight at once with AVX2).
+      constexpr int kRun = 64;
+      glm::vec3 origins[kRun], directions[kRun];
+      float phases[kRun];
+      long found[kRun];
+      for (int x0 = rect_.x; x0 < rect_.right(); x0 += kRun) {
+        const int n = std::min(kRun, rect_.right() - x0);
+        for (int i = 0; i < n; ++i) {
+          const VoxelRay r(camera.ray(x0 + i, y), scale);
+          origins[i] = r.origin, directions[i] = r.direction, phases[i] = r.phase;
+        }
+        grid.occludedFrom(origins, directions, phases, n, scale.step, found);
+        for (int i = 0; i < n; ++i)
+          out[x0 + i - rect_.x] = found[i] >= long(kNeverStored) ? kNeverStored : std::int32_t(found[i]);
       }
     }
   });
