@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::size_t kMinPooledFloats = std::size_t(64) << 10;   //!< 256 KiB: smaller ones are cheap
 constexpr std::size_t kMaxPooledBytes = std::size_t(128) << 20;   //!< what idle buffers may hold
-constexpr std::size_t kMaxWaste = 4;  //!< never hand out a buffer more than 4x the size asked for
+constexpr std::size_t kMaxWaste = 2;  //!< never hand out a buffer more than 2x the size asked for
 
 struct Pool {
   std::mutex mutex;
