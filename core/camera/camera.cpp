@@ -40,6 +40,8 @@ Camera::Camera(const View& view, const glm::vec3& worldMin, const glm::vec3& wor
   const glm::vec3 target = centre - view.pan.x * radius * right_ - view.pan.y * radius * up_;
   eye_ = target - forward_ * (view.distance * radius);
   aspect_ = float(width) / float(std::max(height, 1));
+  twoOverWidth_ = 2.0f / float(std::max(width, 1));
+  twoOverHeight_ = 2.0f / float(std::max(height, 1));
   const float tanHalf = std::tan(glm::radians(std::clamp(view.fovDeg, 1.0f, 170.0f)) * 0.5f);
   halfHeight_ = orthographic_ ? tanHalf * view.distance * radius : tanHalf;
 }

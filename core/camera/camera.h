@@ -29,8 +29,8 @@ class Camera {
   //! The ray through the centre of pixel (px, py); y grows downward. Inline: every brick asks for
   //! every pixel it covers, and a call returning the ray through memory cost more than the math.
   Ray ray(int px, int py) const {
-    const float sx = ((float(px) + 0.5f) / float(width_) * 2.0f - 1.0f) * aspect_ * halfHeight_;
-    const float sy = (1.0f - (float(py) + 0.5f) / float(height_) * 2.0f) * halfHeight_;
+    const float sx = ((float(px) + 0.5f) * twoOverWidth_ - 1.0f) * aspect_ * halfHeight_;
+    const float sy = (1.0f - (float(py) + 0.5f) * twoOverHeight_) * halfHeight_;
     const float offset = pixelOffset(px, py);
     if (orthographic_) return Ray{eye_ + sx * right_ + sy * up_, forward_, offset};
     return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), offset};
@@ -64,6 +64,7 @@ class Camera {
   glm::vec3 eye_, forward_, right_, up_;
   float halfHeight_;  //!< tan(fov/2) for perspective; world half-height of the frame for orthographic
   float aspect_;
+  float twoOverWidth_, twoOverHeight_;  //!< 2 / width, 2 / height: a ray multiplies (a division per ray and brick was a stall)
 };
 
 }  // namespace kdswap
