@@ -228,69 +228,87 @@ KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
   return c;
 }
 
+//! One ray's lattice in registers.
+struct RayLanes {
+  __m256 ox, oy, oz, dx, dy, dz, phase, step;
+};
+
+//! Samples k .. k + 7 of a ray (those up to `last`): points, cells, the cells' reach, voxel offsets.
+struct Group {
+  __m256 px, py, pz;
+  __m256i cx, cy, cz, cell, reach, offset;
+  int n, visible;  //!< samples in the segment; bit j: sample k + j lies in a cell that can be visible
+};
+
+KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConstants& bc, const RayLanes& r,
+                                                               const std::uint8_t* reachMap, long k, long last, Group& g) {
+  g.n = int(std::min<long>(kLanes, last - k + 1));
+  // Points k .. k + 7 exactly as RaySegment::point computes them (k + j fits an int: it is a
+  // sample index along one ray).
+  const __m256 t =
+      _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(int(k)), bc.lane)), r.phase), r.step);
+  g.px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), g.py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
+  g.pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
+  const __m256i ix = _mm256_cvttps_epi32(g.px), iy = _mm256_cvttps_epi32(g.py), iz = _mm256_cvttps_epi32(g.pz);
+  g.cx = _mm256_sub_epi32(_mm256_srai_epi32(ix, Brick::kCellShift), bc.cellLoX);
+  g.cy = _mm256_sub_epi32(_mm256_srai_epi32(iy, Brick::kCellShift), bc.cellLoY);
+  g.cz = _mm256_sub_epi32(_mm256_srai_epi32(iz, Brick::kCellShift), bc.cellLoZ);
+  const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane);
+  g.cell = _mm256_and_si256(  // lanes past the segment look at cell 0
+      _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(g.cz, bc.countY), g.cy), bc.countX), g.cx),
+      inSegment);
+  g.reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(reachMap), g.cell, 1),
+                             _mm256_set1_epi32(0xFF));
+  g.visible =
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(g.reach, _mm256_setzero_si256()))) & ((1 << g.n) - 1);
+  g.offset = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, bc.loZ), bc.sz),
+                                               _mm256_mullo_epi32(_mm256_sub_epi32(iy, bc.loY), bc.sy)),
+                              _mm256_sub_epi32(ix, bc.loX));
+}
+
 KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchContext& m, const BrickConstants& bc,
                                                                 const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
   PendingSamples pending;
   std::size_t lastJumpedCell = std::size_t(-1);
-  const __m256i lane = bc.lane;
-  const __m256 ox = _mm256_set1_ps(s.origin.x), oy = _mm256_set1_ps(s.origin.y), oz = _mm256_set1_ps(s.origin.z);
-  const __m256 dx = _mm256_set1_ps(s.direction.x), dy = _mm256_set1_ps(s.direction.y),
-               dz = _mm256_set1_ps(s.direction.z);
-  const __m256 phase = _mm256_set1_ps(s.phase), step = _mm256_set1_ps(s.step);
-  const __m256i cellLoX = bc.cellLoX, cellLoY = bc.cellLoY, cellLoZ = bc.cellLoZ;
-  const __m256i countX = bc.countX, countY = bc.countY;
-  const __m256i loX = bc.loX, loY = bc.loY, loZ = bc.loZ;
-  const __m256i sy = bc.sy, sz = bc.sz;
+  const RayLanes r{_mm256_set1_ps(s.origin.x),    _mm256_set1_ps(s.origin.y),    _mm256_set1_ps(s.origin.z),
+                   _mm256_set1_ps(s.direction.x), _mm256_set1_ps(s.direction.y), _mm256_set1_ps(s.direction.z),
+                   _mm256_set1_ps(s.phase),       _mm256_set1_ps(s.step)};
   const Voxel* const data = bc.data;
 
   long k = s.first;
+  Group g;
+  if (k <= s.last) groupAt(bc, r, m.reach, k, s.last, g);
   while (k <= s.last) {
-    const int n = int(std::min<long>(kLanes, s.last - k + 1));
-    // Points k .. k + 7 exactly as RaySegment::point computes them (k + j fits an int: it is a
-    // sample index along one ray).
-    const __m256 t =
-        _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(int(k)), lane)), phase), step);
-    const __m256 px = _mm256_add_ps(ox, _mm256_mul_ps(dx, t)), py = _mm256_add_ps(oy, _mm256_mul_ps(dy, t)),
-                 pz = _mm256_add_ps(oz, _mm256_mul_ps(dz, t));
-    const __m256i ix = _mm256_cvttps_epi32(px), iy = _mm256_cvttps_epi32(py), iz = _mm256_cvttps_epi32(pz);
-    const __m256i cx = _mm256_sub_epi32(_mm256_srai_epi32(ix, Brick::kCellShift), cellLoX);
-    const __m256i cy = _mm256_sub_epi32(_mm256_srai_epi32(iy, Brick::kCellShift), cellLoY);
-    const __m256i cz = _mm256_sub_epi32(_mm256_srai_epi32(iz, Brick::kCellShift), cellLoZ);
-    const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), lane);
-    const __m256i cell = _mm256_and_si256(  // lanes past the segment look at cell 0
-        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, countY), cy), countX), cx),
-        inSegment);
-    const __m256i reach = _mm256_and_si256(
-        _mm256_i32gather_epi32(reinterpret_cast<const int*>(m.reach), cell, 1), _mm256_set1_epi32(0xFF));
-    const int visible =
-        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()))) & ((1 << n) - 1);
-    const __m256i offset = _mm256_add_epi32(
-        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, loZ), sz), _mm256_mullo_epi32(_mm256_sub_epi32(iy, loY), sy)),
-        _mm256_sub_epi32(ix, loX));
     alignas(32) int offsets[kLanes];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), offset);
-
-    if (visible == 0xFF) {  // eight visible samples in a row: shade them straight from registers
+    _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), g.offset);
+    if (g.visible == 0xFF) {  // eight visible samples in a row: shade them straight from registers
+      // The next group first: its visibility test is then settled by the time the loop branches
+      // on it (a mispredicted branch costs far less than one waiting on a gather).
+      const long kNext = k + kLanes;
+      Group next;
+      if (kNext <= s.last) groupAt(bc, r, m.reach, kNext, s.last, next);
       if (flush(m, s.toLight, pending, result, samples)) return result.rgba();
       const Voxel* corner[kLanes];
       for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
       Shaded8 shaded;
-      shade8(m, s.toLight, px, py, pz, corner, shaded);
+      shade8(m, s.toLight, g.px, g.py, g.pz, corner, shaded);
       if (compositeInOrder(result, shaded, kLanes, m.stopTransmittance, samples)) return result.rgba();
-      k += kLanes;
+      k = kNext;
+      g = next;
       continue;
     }
     // Otherwise sample by sample, as the scalar march: visible ones wait in `pending`, the first
     // invisible one jumps across its empty region.
     alignas(32) float x[kLanes], y[kLanes], z[kLanes];
     alignas(32) int cells[kLanes], reaches[kLanes], cxs[kLanes], cys[kLanes], czs[kLanes];
-    _mm256_store_ps(x, px), _mm256_store_ps(y, py), _mm256_store_ps(z, pz);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(cells), cell);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(reaches), reach);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(cxs), cx);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(cys), cy);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(czs), cz);
+    _mm256_store_ps(x, g.px), _mm256_store_ps(y, g.py), _mm256_store_ps(z, g.pz);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cells), g.cell);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(reaches), g.reach);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cxs), g.cx);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(cys), g.cy);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(czs), g.cz);
+    const int n = g.n;
     long next = k + n;
     for (int j = 0; j < n; ++j) {
       if (reaches[j] == 0) {
@@ -306,6 +324,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchConte
       break;
     }
     k = next;
+    if (k <= s.last) groupAt(bc, r, m.reach, k, s.last, g);
   }
   flush(m, s.toLight, pending, result, samples);
   return result.rgba();
