@@ -56,6 +56,7 @@ class OcclusionGrid {
   void occludedFrom(const glm::vec3* origins, const glm::vec3* directions, const float* phases, int count, float step,
                     long* out) const;
 
+ private:
   //! One ray's walk through the cells, between cell crossings (for the walks in occlusion_grid*.cpp).
   struct Walk {
     float t, t1;                  //!< where the current cell's segment starts; where the walk ends
@@ -65,8 +66,6 @@ class OcclusionGrid {
     int cx, cy, cz, dirX, dirY, dirZ;
     std::ptrdiff_t index;         //!< linear index of cell (cx, cy, cz)
   };
-
- private:
   //! Sets up the walk of ray o + d t; false when it cannot reach the threshold (kNever).
   bool startWalk(const glm::vec3& o, const glm::vec3& d, float step, float phase, Walk& w) const;
   //! The scalar walk from its start to the answer.

@@ -141,7 +141,7 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay,
   return true;
 }
 
-long RayCaster::firstLatticeIndexBound(const Camera& camera) const {
+long RayCaster::firstLatticeIndexBound(const Camera& camera, float step) const {
   // Every ray's t at a point p is at least dot(p - eye, forward): the distance itself for a
   // perspective ray (unit direction), exactly it for an orthographic one (origins lie in the plane
   // through the eye). Over a box the dot product is least at a corner. The box is grown by a voxel
@@ -151,7 +151,6 @@ long RayCaster::firstLatticeIndexBound(const Camera& camera) const {
   const glm::vec3 toLo = lo - camera.eye(), toHi = hi - camera.eye(), f = camera.forward();
   const float tLow = std::min(toLo.x * f.x, toHi.x * f.x) + std::min(toLo.y * f.y, toHi.y * f.y) +
                      std::min(toLo.z * f.z, toHi.z * f.z);
-  const float step = VoxelRay::worldStep(spacing, settings_);
   if (!(tLow > 0.0f) || !(step > 0.0f)) return 0;  // the eye is at or inside the box's slab: no bound
   // Rounding of the t values compared with: a relative slack far above float error.
   const double index = double(tLow) * (1.0 - 1e-4) / double(step) - 1.0;  // phase < 1
@@ -165,8 +164,8 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   Image image(rect);
   if (rect.empty()) return image;
   const ClipBox clip = clipBox();
-  const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera) : 0;
   const VoxelRay::Scale scale(spacing, settings_);
+  const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera, scale.step) : 0;
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).

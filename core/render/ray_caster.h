@@ -55,9 +55,9 @@ class RayCaster {
     float hiMagnitude;
   };
   ClipBox clipBox() const;
-  //! A lattice index no ray of `camera` reaches the brick before (it starts at or beyond it):
+  //! A lattice index (samples `step` apart) no ray of `camera` reaches the brick before:
   //! where the occlusion map ends the ray at or before this index, the pixel needs no ray at all.
-  long firstLatticeIndexBound(const Camera& camera) const;
+  long firstLatticeIndexBound(const Camera& camera, float step) const;
   //! The ray's owned samples in this brick as a segment to march; false when it has none to take
   //! (misses the visible box, ends before it, or no lattice point falls inside).
   bool segmentFor(const VoxelRay& ray, const glm::vec3& toLight, const ClipBox& clip, RenderCounters& counters,
