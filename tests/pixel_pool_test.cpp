@@ -61,3 +61,36 @@ TEST_CASE("images built on pooled storage start transparent and copy exactly") {
   CHECK(moved.rect() == r);
   CHECK(moved.at(7, 9).b == 0.125f);
 }
+
+TEST_CASE("an image extended over a larger rect keeps its pixels and is transparent around them") {
+  const Rect big{-3, 5, 300, 280};
+  {
+    Image dirty(big);  // pooled storage full of non-zero values, likely handed out again below
+    for (int y = big.y; y < big.bottom(); ++y)
+      for (int x = big.x; x < big.right(); ++x) dirty.at(x, y) = Rgba{1, 2, 3, 4};
+  }
+  // Own rect in the middle, touching the left/top corner, touching the right/bottom corner, equal.
+  for (const Rect own : {Rect{40, 60, 100, 90}, Rect{-3, 5, 20, 10}, Rect{250, 240, 47, 45}, big}) {
+    CAPTURE(own.x);
+    CAPTURE(own.y);
+    CAPTURE(own.w);
+    CAPTURE(own.h);
+    Image small(own);
+    for (int y = own.y; y < own.bottom(); ++y)
+      for (int x = own.x; x < own.right(); ++x) small.at(x, y) = Rgba{float(x), float(y), 0.5f, 1.0f};
+    const Image extended = small.extendedTo(big);
+    REQUIRE(extended.rect() == big);
+    REQUIRE(extended.values().size() == std::size_t(big.area()) * 4);
+    int wrong = 0;
+    for (int y = big.y; y < big.bottom(); ++y)
+      for (int x = big.x; x < big.right(); ++x) {
+        const Rgba expected = own.contains(x, y) ? Rgba{float(x), float(y), 0.5f, 1.0f} : Rgba{};
+        const Rgba& got = extended.at(x, y);
+        wrong += got.r != expected.r || got.g != expected.g || got.b != expected.b || got.a != expected.a;
+      }
+    CHECK(wrong == 0);
+  }
+  const Image none = Image().extendedTo(Rect{0, 0, 4, 4});
+  CHECK(none.rect() == (Rect{0, 0, 4, 4}));
+  CHECK(none.at(3, 3).a == 0.0f);
+}

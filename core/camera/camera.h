@@ -51,6 +51,17 @@ class Camera {
   //! Conservative pixel rectangle (clipped to the frame) covering the projection of a world box.
   Rect projectBox(const glm::vec3& lo, const glm::vec3& hi) const;
 
+  //! What ray() computes from: setups that compute several rays at once (core/render/ray_setup.h)
+  //! repeat its arithmetic exactly, operation by operation.
+  struct Basis {
+    bool orthographic;
+    glm::vec3 eye, forward, right, up;
+    float halfHeight, aspect, twoOverWidth, twoOverHeight;
+  };
+  Basis basis() const {
+    return Basis{orthographic_, eye_, forward_, right_, up_, halfHeight_, aspect_, twoOverWidth_, twoOverHeight_};
+  }
+
   bool orthographic() const { return orthographic_; }
   const glm::vec3& eye() const { return eye_; }
   const glm::vec3& forward() const { return forward_; }

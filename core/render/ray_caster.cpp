@@ -15,6 +15,7 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include "core/render/ray_setup.h"
 #include "core/render/trilinear.h"
 #include "core/render/voxel_ray.h"
 #include "core/util/clock.h"
@@ -89,7 +90,6 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay,
                                                        RenderCounters& counters, long occludedFrom, RaySegment& segment) const {
   const glm::vec3 o = voxelRay.origin;
   const glm::vec3 d = voxelRay.direction;
-  const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
   // 1 / d: used only where d != 0 (and not so small that it overflows).
   const glm::vec3 inverse = 1.0f / d;
 
@@ -111,17 +111,25 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay,
     tFar = std::min(tFar, t2);
   }
   if (tNear > tFar) return false;
-  ++counters.rays;
+  return segmentFromClip(o, d, inverse, voxelRay.step, voxelRay.phase, voxelRay.inverseStep,
+                         std::floor(tNear * voxelRay.inverseStep - voxelRay.phase),
+                         std::ceil(tFar * voxelRay.inverseStep - voxelRay.phase), toLight, counters, occludedFrom, segment);
+}
 
-  const float step = voxelRay.step;
-  const float phase = voxelRay.phase;
+KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFromClip(const glm::vec3& o, const glm::vec3& d, const glm::vec3& inverse,
+                                                            float step, float phase, float inverseStep, float firstIndex,
+                                                            float lastIndex, const glm::vec3& toLight,
+                                                            RenderCounters& counters, long occludedFrom,
+                                                            RaySegment& segment) const {
+  ++counters.rays;
+  const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
   // One lattice index of slack on each side: the ownership test below is the exact rule.
-  const long kBegin = std::max(0L, long(std::floor(tNear * voxelRay.inverseStep - phase)) - 1);
+  const long kBegin = std::max(0L, long(firstIndex) - 1);
   if (kBegin >= occludedFrom) {  // the single-node ray ends before this brick
     ++counters.occluded;
     return false;
   }
-  const long kEnd = std::min(long(std::ceil(tFar * voxelRay.inverseStep - phase)) + 1, occludedFrom - 1);
+  const long kEnd = std::min(long(lastIndex) + 1, occludedFrom - 1);
 
   // The owned samples form one run of lattice indices: each coordinate of p = o + d t is monotone
   // in k (rounding is monotone), so membership of the half-open box [lo, hi) is an interval. Its
@@ -137,7 +145,7 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFor(const VoxelRay& voxelRay,
 
   if (kFirst > kLast) return false;  // no owned sample (the march would take none either)
   // The light is at the eye.
-  segment = RaySegment{o, d, inverse, step, phase, kFirst, kLast, toLight, voxelRay.inverseStep};
+  segment = RaySegment{o, d, inverse, step, phase, kFirst, kLast, toLight, inverseStep};
   return true;
 }
 
@@ -166,6 +174,9 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   const ClipBox clip = clipBox();
   const VoxelRay::Scale scale(spacing, settings_);
   const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera, scale.step) : 0;
+  const bool simdSetup = raySetup8Available();
+  const RaySetupConstants setup{camera.basis(), scale.inverseSpacing, scale.inverseStep, scale.jitter, clip.lo, clip.hi,
+                                clip.hiMagnitude};
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).
@@ -180,23 +191,49 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
           std::array<Rgba, kBatch> colours;
           std::array<Rgba*, kBatch> pixels;
           std::size_t pending = 0;
+          RayLanes8 lanes;
           const auto march = [&] {
             marchFunction_(march_, segments.data(), pending, colours.data(), local.samples);
             for (std::size_t i = 0; i < pending; ++i) *pixels[i] = colours[i];
             pending = 0;
           };
+          // Runs of eight pixels: their rays are set up together where AVX2 allows (ray_setup.h).
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-            for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-              const long occludedFrom = occlusion_ ? occlusion_->occludedFrom(x, y) : OcclusionGrid::kNever;
-              if (occludedFrom <= firstPossible) {  // ends before the brick: no ray to set up
-                ++local.rays, ++local.occluded;
+            for (int x0 = tile.cols().begin(); x0 < tile.cols().end(); x0 += 8) {
+              const int n = std::min(8, tile.cols().end() - x0);
+              long occludedFrom[8];
+              int live = 0;  // bit j: pixel x0 + j needs its ray set up
+              for (int j = 0; j < n; ++j) {
+                occludedFrom[j] = occlusion_ ? occlusion_->occludedFrom(x0 + j, y) : OcclusionGrid::kNever;
+                if (occludedFrom[j] <= firstPossible)  // ends before the brick: no ray to set up
+                  ++local.rays, ++local.occluded;
+                else
+                  live |= 1 << j;
+              }
+              if (live == 0) continue;
+              if (simdSetup) {
+                setupRays8(setup, x0, y, lanes);
+                for (int bits = live & lanes.crosses; bits != 0; bits &= bits - 1) {
+                  const int j = __builtin_ctz(bits);
+                  const glm::vec3 o(lanes.ox[j], lanes.oy[j], lanes.oz[j]), d(lanes.dx[j], lanes.dy[j], lanes.dz[j]);
+                  if (!segmentFromClip(o, d, glm::vec3(lanes.ix[j], lanes.iy[j], lanes.iz[j]), scale.step,
+                                       lanes.phase[j], scale.inverseStep, lanes.firstIndex[j], lanes.lastIndex[j],
+                                       -glm::vec3(lanes.wx[j], lanes.wy[j], lanes.wz[j]), local, occludedFrom[j],
+                                       segments[pending]))
+                    continue;
+                  pixels[pending] = &image.at(x0 + j, y);
+                  if (++pending == kBatch) march();
+                }
                 continue;
               }
-              const Ray ray = camera.ray(x, y);
-              if (!segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom, segments[pending]))
-                continue;
-              pixels[pending] = &image.at(x, y);
-              if (++pending == kBatch) march();
+              for (int bits = live; bits != 0; bits &= bits - 1) {
+                const int j = __builtin_ctz(bits);
+                const Ray ray = camera.ray(x0 + j, y);
+                if (!segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom[j], segments[pending]))
+                  continue;
+                pixels[pending] = &image.at(x0 + j, y);
+                if (++pending == kBatch) march();
+              }
             }
           if (pending > 0) march();
           local.seconds += nowSeconds() - start;

@@ -62,6 +62,11 @@ class RayCaster {
   //! (misses the visible box, ends before it, or no lattice point falls inside).
   bool segmentFor(const VoxelRay& ray, const glm::vec3& toLight, const ClipBox& clip, RenderCounters& counters,
                   long occludedFrom, RaySegment& segment) const;
+  //! segmentFor after a clip that passed: `firstIndex` = floor(tNear / step - phase) and
+  //! `lastIndex` = ceil(tFar / step - phase), as floats. Shared with the eight-ray setup.
+  bool segmentFromClip(const glm::vec3& o, const glm::vec3& d, const glm::vec3& inverse, float step, float phase,
+                       float inverseStep, float firstIndex, float lastIndex, const glm::vec3& toLight,
+                       RenderCounters& counters, long occludedFrom, RaySegment& segment) const;
 
   const Brick& brick_;
   const TransferTable& table_;

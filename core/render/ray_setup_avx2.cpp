@@ -1,0 +1,124 @@
+// AVX2 ray setup for eight pixels of a row (ray_setup.h). Every step names the scalar expression it
+// repeats; the order of operations is theirs, so each lane rounds as the scalar code does.
+#include "core/render/ray_setup.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+
+namespace kdswap {
+namespace {
+
+#define KDSWAP_AVX2 __attribute__((target("avx2")))
+
+KDSWAP_AVX2 inline __m256 splat(float v) { return _mm256_set1_ps(v); }
+KDSWAP_AVX2 inline __m256 absolute(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v); }
+
+//! Camera::pixelOffset of pixels (px, py): the same multiply-xorshift rounds on 32-bit lanes.
+KDSWAP_AVX2 inline __m256 pixelOffsets(__m256i px, int py) {
+  __m256i h = _mm256_xor_si256(_mm256_mullo_epi32(px, _mm256_set1_epi32(int(0x8da6b343u))),
+                               _mm256_set1_epi32(int(std::uint32_t(py) * 0xd8163841u)));
+  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
+  h = _mm256_mullo_epi32(h, _mm256_set1_epi32(int(0x7feb352du)));
+  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 15));
+  h = _mm256_mullo_epi32(h, _mm256_set1_epi32(int(0x846ca68bu)));
+  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
+  return _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_srli_epi32(h, 8)), splat(1.0f / 16777216.0f));
+}
+
+//! One axis of RayCaster::segmentFor's clip: parallel lanes (|d| < kTinyDirection) are rejected
+//! when outside the slab and otherwise left alone; the others narrow [tNear, tFar].
+KDSWAP_AVX2 inline void clipAxis(__m256 o, __m256 d, __m256 inverse, float lo, float hi, __m256 margin,
+                                 __m256& tNear, __m256& tFar, __m256& rejected) {
+  const __m256 lower = _mm256_sub_ps(splat(lo), margin), upper = _mm256_add_ps(splat(hi), margin);
+  const __m256 parallel = _mm256_cmp_ps(absolute(d), splat(1e-30f), _CMP_NGE_UQ);  // !(|d| >= tiny)
+  const __m256 outside = _mm256_or_ps(_mm256_cmp_ps(o, lower, _CMP_LT_OQ), _mm256_cmp_ps(o, upper, _CMP_GT_OQ));
+  rejected = _mm256_or_ps(rejected, _mm256_and_ps(parallel, outside));
+  const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(lower, o), inverse), t2 = _mm256_mul_ps(_mm256_sub_ps(upper, o), inverse);
+  const __m256 swap = _mm256_cmp_ps(t1, t2, _CMP_GT_OQ);  // if (t1 > t2) std::swap(t1, t2)
+  const __m256 near = _mm256_blendv_ps(t1, t2, swap), far = _mm256_blendv_ps(t2, t1, swap);
+  // tNear = std::max(tNear, near): near where tNear < near; tFar = std::min(tFar, far): far where far < tFar.
+  const __m256 raiseNear = _mm256_andnot_ps(parallel, _mm256_cmp_ps(tNear, near, _CMP_LT_OQ));
+  const __m256 lowerFar = _mm256_andnot_ps(parallel, _mm256_cmp_ps(far, tFar, _CMP_LT_OQ));
+  tNear = _mm256_blendv_ps(tNear, near, raiseNear);
+  tFar = _mm256_blendv_ps(tFar, far, lowerFar);
+}
+
+KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLanes8& out) {
+  const Camera::Basis& b = c.camera;
+  // Camera::ray: sx per lane, sy for the row.
+  const __m256i px = _mm256_add_epi32(_mm256_set1_epi32(x0), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  const __m256 sx = _mm256_mul_ps(
+      _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(px), splat(0.5f)), splat(b.twoOverWidth)),
+                                  splat(1.0f)),
+                    splat(b.aspect)),
+      splat(b.halfHeight));
+  const float sy = (1.0f - (float(y) + 0.5f) * b.twoOverHeight) * b.halfHeight;
+  __m256 wox, woy, woz, wdx, wdy, wdz;  // world origin and direction
+  if (b.orthographic) {  // eye_ + sx * right_ + sy * up_, forward_
+    wox = _mm256_add_ps(_mm256_add_ps(splat(b.eye.x), _mm256_mul_ps(sx, splat(b.right.x))), splat(sy * b.up.x));
+    woy = _mm256_add_ps(_mm256_add_ps(splat(b.eye.y), _mm256_mul_ps(sx, splat(b.right.y))), splat(sy * b.up.y));
+    woz = _mm256_add_ps(_mm256_add_ps(splat(b.eye.z), _mm256_mul_ps(sx, splat(b.right.z))), splat(sy * b.up.z));
+    wdx = splat(b.forward.x), wdy = splat(b.forward.y), wdz = splat(b.forward.z);
+  } else {  // eye_, glm::normalize(forward_ + sx * right_ + sy * up_) = v * (1 / sqrt(dot(v, v)))
+    wox = splat(b.eye.x), woy = splat(b.eye.y), woz = splat(b.eye.z);
+    const __m256 vx = _mm256_add_ps(_mm256_add_ps(splat(b.forward.x), _mm256_mul_ps(sx, splat(b.right.x))), splat(sy * b.up.x));
+    const __m256 vy = _mm256_add_ps(_mm256_add_ps(splat(b.forward.y), _mm256_mul_ps(sx, splat(b.right.y))), splat(sy * b.up.y));
+    const __m256 vz = _mm256_add_ps(_mm256_add_ps(splat(b.forward.z), _mm256_mul_ps(sx, splat(b.right.z))), splat(sy * b.up.z));
+    const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)), _mm256_mul_ps(vz, vz));
+    const __m256 inverseLength = _mm256_div_ps(splat(1.0f), _mm256_sqrt_ps(len2));
+    wdx = _mm256_mul_ps(vx, inverseLength), wdy = _mm256_mul_ps(vy, inverseLength), wdz = _mm256_mul_ps(vz, inverseLength);
+  }
+  // VoxelRay: world -> voxel coordinates; the phase is the pixel's offset when jittering.
+  const __m256 ox = _mm256_mul_ps(wox, splat(c.inverseSpacing.x)), oy = _mm256_mul_ps(woy, splat(c.inverseSpacing.y)),
+               oz = _mm256_mul_ps(woz, splat(c.inverseSpacing.z));
+  const __m256 dx = _mm256_mul_ps(wdx, splat(c.inverseSpacing.x)), dy = _mm256_mul_ps(wdy, splat(c.inverseSpacing.y)),
+               dz = _mm256_mul_ps(wdz, splat(c.inverseSpacing.z));
+  const __m256 phase = c.jitter ? pixelOffsets(px, y) : _mm256_setzero_ps();
+  // RayCaster::segmentFor: 1 / d, the rounding margin, the clip, the lattice index bounds.
+  const __m256 ix = _mm256_div_ps(splat(1.0f), dx), iy = _mm256_div_ps(splat(1.0f), dy), iz = _mm256_div_ps(splat(1.0f), dz);
+  const __m256 magnitude =
+      _mm256_add_ps(_mm256_max_ps(_mm256_max_ps(absolute(ox), absolute(oy)), absolute(oz)), splat(c.clipHiMagnitude));
+  const __m256 margin = _mm256_mul_ps(splat(4e-6f), magnitude);
+  __m256 tNear = _mm256_setzero_ps(), tFar = splat(std::numeric_limits<float>::max()), rejected = _mm256_setzero_ps();
+  clipAxis(ox, dx, ix, c.clipLo.x, c.clipHi.x, margin, tNear, tFar, rejected);
+  clipAxis(oy, dy, iy, c.clipLo.y, c.clipHi.y, margin, tNear, tFar, rejected);
+  clipAxis(oz, dz, iz, c.clipLo.z, c.clipHi.z, margin, tNear, tFar, rejected);
+  const __m256 misses = _mm256_or_ps(rejected, _mm256_cmp_ps(tNear, tFar, _CMP_GT_OQ));  // tNear > tFar
+  out.crosses = ~_mm256_movemask_ps(misses) & 0xFF;
+  const __m256 inverseStep = splat(c.inverseStep);
+  _mm256_store_ps(out.firstIndex, _mm256_floor_ps(_mm256_sub_ps(_mm256_mul_ps(tNear, inverseStep), phase)));
+  _mm256_store_ps(out.lastIndex, _mm256_ceil_ps(_mm256_sub_ps(_mm256_mul_ps(tFar, inverseStep), phase)));
+  _mm256_store_ps(out.ox, ox), _mm256_store_ps(out.oy, oy), _mm256_store_ps(out.oz, oz);
+  _mm256_store_ps(out.dx, dx), _mm256_store_ps(out.dy, dy), _mm256_store_ps(out.dz, dz);
+  _mm256_store_ps(out.ix, ix), _mm256_store_ps(out.iy, iy), _mm256_store_ps(out.iz, iz);
+  _mm256_store_ps(out.wx, wdx), _mm256_store_ps(out.wy, wdy), _mm256_store_ps(out.wz, wdz);
+  _mm256_store_ps(out.phase, phase);
+}
+
+}  // namespace
+
+bool raySetup8Available() {
+  static const bool available = [] {
+    __builtin_cpu_init();
+    const char* simd = std::getenv("KDSWAP_SIMD");
+    return __builtin_cpu_supports("avx2") && !(simd && std::strcmp(simd, "scalar") == 0);
+  }();
+  return available;
+}
+
+void setupRays8(const RaySetupConstants& c, int x0, int y, RayLanes8& out) { setupRays8Avx2(c, x0, y, out); }
+
+}  // namespace kdswap
+
+#else
+
+namespace kdswap {
+bool raySetup8Available() { return false; }
+void setupRays8(const RaySetupConstants&, int, int, RayLanes8&) {}
+}  // namespace kdswap
+
+#endif

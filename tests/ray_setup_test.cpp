@@ -1,0 +1,68 @@
+// The eight-ray setup (AVX2) against Camera::ray and VoxelRay, lane by lane and bit for bit, over
+// perspective and orthographic views, odd frame sizes, spacings and jitter on and off. (That the
+// clip and lattice indices match too is checked through render() = castRay in ray_march_test.cpp.)
+#include <doctest/doctest.h>
+
+#include <cstring>
+
+#include "core/camera/camera.h"
+#include "core/render/ray_setup.h"
+#include "core/render/render_settings.h"
+#include "core/render/voxel_ray.h"
+
+using namespace kdswap;
+
+namespace {
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pixel, bit for bit") {
+  if (!raySetup8Available()) {
+    MESSAGE("no AVX2 here (or KDSWAP_SIMD=scalar): rays are set up one by one, nothing to compare");
+    return;
+  }
+  long lanes = 0, differing = 0, crossing = 0;
+  for (const Projection projection : {Projection::Perspective, Projection::Orthographic})
+    for (const float azimuth : {0.0f, 33.0f, 90.0f, 250.0f})
+      for (const bool jitter : {false, true}) {
+        View view;
+        view.azimuthDeg = azimuth;
+        view.elevationDeg = azimuth - 60.0f;
+        view.projection = projection;
+        const glm::vec3 spacing = azimuth == 33.0f ? glm::vec3(3.2f, 3.2f, 1.5f) : glm::vec3(1.0f);
+        const glm::vec3 worldHi = glm::vec3(63.0f, 63.0f, 92.0f) * spacing;
+        const int width = 61, height = 37;  // rows not a multiple of eight
+        const Camera camera(view, glm::vec3(0.0f), worldHi, width, height);
+        RenderSettings settings;
+        settings.jitter = jitter;
+        settings.stepVoxels = 0.5f;
+        const VoxelRay::Scale scale(spacing, settings);
+        const RaySetupConstants c{camera.basis(), scale.inverseSpacing, scale.inverseStep, scale.jitter,
+                                  glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), 61.0f};
+        RayLanes8 out;
+        for (int y = 0; y < height; ++y)
+          for (int x0 = 0; x0 < width; x0 += 8) {
+            setupRays8(c, x0, y, out);
+            for (int j = 0; j < 8 && x0 + j < width; ++j) {
+              const Ray ray = camera.ray(x0 + j, y);
+              const VoxelRay v(ray, scale);
+              const glm::vec3 inverse = 1.0f / v.direction;
+              ++lanes;
+              crossing += (out.crosses >> j) & 1;
+              differing += !(sameBits(out.ox[j], v.origin.x) && sameBits(out.oy[j], v.origin.y) &&
+                             sameBits(out.oz[j], v.origin.z) && sameBits(out.dx[j], v.direction.x) &&
+                             sameBits(out.dy[j], v.direction.y) && sameBits(out.dz[j], v.direction.z) &&
+                             sameBits(out.ix[j], inverse.x) && sameBits(out.iy[j], inverse.y) &&
+                             sameBits(out.iz[j], inverse.z) && sameBits(out.wx[j], ray.direction.x) &&
+                             sameBits(out.wy[j], ray.direction.y) && sameBits(out.wz[j], ray.direction.z) &&
+                             sameBits(out.phase[j], v.phase));
+            }
+          }
+      }
+  CHECK(lanes == 16L * 61 * 37);
+  CHECK(differing == 0);
+  CHECK(crossing > lanes / 10);  // the clip box is in view: many rays cross it, not all
+  CHECK(crossing < lanes);
+}
