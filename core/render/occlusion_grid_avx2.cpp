@@ -4,6 +4,8 @@
 // numbers of cells, so few lanes idle long.
 #include "core/render/occlusion_grid.h"
 
+#include "core/util/cpu_features.h"
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 
@@ -98,14 +100,6 @@ KDSWAP_AVX2 void walkEight(const float* depthOf, int countX, int countY, int cou
     exitZ = _mm256_blendv_ps(exitZ, _mm256_add_ps(exitZ, deltaZ), crossZ);
     t = _mm256_max_ps(segmentEnd, t);  // std::max(t, segmentEnd)
   }
-}
-
-bool cpuHasAvx2() {
-  static const bool has = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return has;
 }
 
 }  // namespace

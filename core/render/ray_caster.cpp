@@ -248,6 +248,11 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
             for (std::size_t i = 0; i < pending; ++i) *pixels[i] = colours[i];
             pending = 0;
           };
+          // segments[pending] now holds pixel (x, y)'s segment: queue it for the next batch.
+          const auto queue = [&](int x, int y) {
+            pixels[pending] = &image.at(x, y);
+            if (++pending == kBatch) march();
+          };
           // Runs of eight pixels: their rays are set up together where AVX2 allows (ray_setup.h).
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
             for (int x0 = tile.cols().begin(); x0 < tile.cols().end(); x0 += 8) {
@@ -267,23 +272,19 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
                 for (int bits = live & lanes.crosses; bits != 0; bits &= bits - 1) {
                   const int j = __builtin_ctz(bits);
                   const glm::vec3 o(lanes.ox[j], lanes.oy[j], lanes.oz[j]), d(lanes.dx[j], lanes.dy[j], lanes.dz[j]);
-                  if (!segmentFromClip(o, d, glm::vec3(lanes.ix[j], lanes.iy[j], lanes.iz[j]), scale.step,
-                                       lanes.phase[j], scale.inverseStep, lanes.firstIndex[j], lanes.lastIndex[j],
-                                       -glm::vec3(lanes.wx[j], lanes.wy[j], lanes.wz[j]), local, occludedFrom[j],
-                                       segments[pending]))
-                    continue;
-                  pixels[pending] = &image.at(x0 + j, y);
-                  if (++pending == kBatch) march();
+                  if (segmentFromClip(o, d, glm::vec3(lanes.ix[j], lanes.iy[j], lanes.iz[j]), scale.step,
+                                      lanes.phase[j], scale.inverseStep, lanes.firstIndex[j], lanes.lastIndex[j],
+                                      -glm::vec3(lanes.wx[j], lanes.wy[j], lanes.wz[j]), local, occludedFrom[j],
+                                      segments[pending]))
+                    queue(x0 + j, y);
                 }
                 continue;
               }
               for (int bits = live; bits != 0; bits &= bits - 1) {
                 const int j = __builtin_ctz(bits);
                 const Ray ray = camera.ray(x0 + j, y);
-                if (!segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom[j], segments[pending]))
-                  continue;
-                pixels[pending] = &image.at(x0 + j, y);
-                if (++pending == kBatch) march();
+                if (segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom[j], segments[pending]))
+                  queue(x0 + j, y);
               }
             }
           if (pending > 0) march();

@@ -1,8 +1,7 @@
 // Scalar ray march (the reference) and the choice of march.
 #include "core/render/ray_march.h"
 
-#include <cstdlib>
-#include <cstring>
+#include "core/util/cpu_features.h"
 
 namespace kdswap {
 
@@ -37,10 +36,8 @@ void marchScalar(const MarchContext& m, const RaySegment* segments, std::size_t 
 
 MarchFunction selectedMarchFunction() {
   static const MarchFunction chosen = [] {
-    const char* simd = std::getenv("KDSWAP_SIMD");
-    const bool scalarOnly = simd && std::strcmp(simd, "scalar") == 0;
     const MarchFunction avx2 = avx2MarchFunction();
-    return (avx2 && !scalarOnly) ? avx2 : &marchScalar;
+    return (avx2 && !scalarRequested()) ? avx2 : &marchScalar;
   }();
   return chosen;
 }

@@ -8,6 +8,8 @@
 // into one register per quantity; everything after it runs on eight samples per instruction.
 #include "core/render/ray_march.h"
 
+#include "core/util/cpu_features.h"
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 
@@ -340,10 +342,7 @@ KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, st
 
 }  // namespace
 
-MarchFunction avx2MarchFunction() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") ? &marchAvx2 : nullptr;
-}
+MarchFunction avx2MarchFunction() { return cpuHasAvx2() ? &marchAvx2 : nullptr; }
 
 }  // namespace kdswap
 

@@ -2,9 +2,9 @@
 // repeats; the order of operations is theirs, so each lane rounds as the scalar code does.
 #include "core/render/ray_setup.h"
 
-#include <cstdlib>
-#include <cstring>
 #include <limits>
+
+#include "core/util/cpu_features.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -101,14 +101,7 @@ KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLa
 
 }  // namespace
 
-bool raySetup8Available() {
-  static const bool available = [] {
-    __builtin_cpu_init();
-    const char* simd = std::getenv("KDSWAP_SIMD");
-    return __builtin_cpu_supports("avx2") && !(simd && std::strcmp(simd, "scalar") == 0);
-  }();
-  return available;
-}
+bool raySetup8Available() { return cpuHasAvx2() && !scalarRequested(); }
 
 void setupRays8(const RaySetupConstants& c, int x0, int y, RayLanes8& out) { setupRays8Avx2(c, x0, y, out); }
 
