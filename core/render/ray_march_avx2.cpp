@@ -1,5 +1,5 @@
 // AVX2 ray march: eight consecutive lattice samples at once. [Sections] shading of eight samples
-// | the march (empty-space test per group of eight, fast path when all are visible).
+// | the march (empty-space test per group of eight, visible samples packed eight to a shading).
 // Each step is the scalar reference's operation (ray_march.cpp, sample_shader.h) in the same
 // order; nothing is fused (this file enables AVX2 only, not FMA, and the build compiles with
 // -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
@@ -7,6 +7,8 @@
 // on 4 lanes per sample, as TrilinearCell does (two samples per register), and is then transposed
 // into one register per quantity; everything after it runs on eight samples per instruction.
 #include "core/render/ray_march.h"
+
+#include <climits>
 
 #include "core/util/cpu_features.h"
 
@@ -162,12 +164,128 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 
 }
 
 // ---- [The march] --------------------------------------------------------------------------------
+// Every group of eight consecutive lattice samples is tested against the empty-space map at once;
+// its visible samples are packed, in order, behind those still waiting from earlier groups, and
+// each time eight are waiting they are shaded and composited together. The samples composited are
+// therefore exactly the scalar march's (every sample in a visible cell, in lattice order), with no
+// lane wasted except in a ray's last, partial eight. Where a group ends in empty space the ray
+// jumps to the farthest exit of the empty cubes around its invisible samples.
 
-//! Visible samples collected one by one (around empty space), shaded eight at a time.
-struct PendingSamples {
-  alignas(32) float x[kLanes], y[kLanes], z[kLanes];
-  const Voxel* corner[kLanes];
-  int size = 0;
+//! Samples k .. k + 7 of a ray (those up to `last`): points, cells, the cells' reach, voxel offsets.
+struct Group {
+  __m256 px, py, pz;
+  __m256i cx, cy, cz, reach, offset;
+  int n, visible;  //!< samples in the segment; bit j: sample k + j lies in a cell that can be visible
+};
+
+//! A brick's march constants in registers, set up once per batch of rays.
+struct BrickConstants {
+  __m256i lane, cellLoX, cellLoY, cellLoZ, countX, countY, loX, loY, loZ, sy, sz;
+  __m256 boxLoX, boxLoY, boxLoZ, boxHiX, boxHiY, boxHiZ;  //!< owned box, for the empty cubes' faces
+  const Voxel* data;
+};
+
+KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
+  BrickConstants c;
+  c.lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  c.cellLoX = _mm256_set1_epi32(m.cellLo.x), c.cellLoY = _mm256_set1_epi32(m.cellLo.y),
+  c.cellLoZ = _mm256_set1_epi32(m.cellLo.z);
+  c.countX = _mm256_set1_epi32(m.cellCount.x), c.countY = _mm256_set1_epi32(m.cellCount.y);
+  c.loX = _mm256_set1_epi32(m.storedLo.x), c.loY = _mm256_set1_epi32(m.storedLo.y), c.loZ = _mm256_set1_epi32(m.storedLo.z);
+  c.sy = _mm256_set1_epi32(int(m.voxels.sy)), c.sz = _mm256_set1_epi32(int(m.voxels.sz));
+  c.boxLoX = _mm256_set1_ps(m.lo.x), c.boxLoY = _mm256_set1_ps(m.lo.y), c.boxLoZ = _mm256_set1_ps(m.lo.z);
+  c.boxHiX = _mm256_set1_ps(m.hi.x), c.boxHiY = _mm256_set1_ps(m.hi.y), c.boxHiZ = _mm256_set1_ps(m.hi.z);
+  c.data = m.voxels.data;
+  return c;
+}
+
+//! One ray's lattice in registers.
+struct RayLanes {
+  __m256 ox, oy, oz, dx, dy, dz, phase, step;
+};
+
+KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConstants& bc, const RayLanes& r,
+                                                               const std::uint8_t* reachMap, long k, long last, Group& g) {
+  g.n = int(std::min<long>(kLanes, last - k + 1));
+  // Points k .. k + 7 exactly as RaySegment::point computes them (k + j fits an int: it is a
+  // sample index along one ray).
+  const __m256 t =
+      _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(int(k)), bc.lane)), r.phase), r.step);
+  g.px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), g.py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
+  g.pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
+  const __m256i ix = _mm256_cvttps_epi32(g.px), iy = _mm256_cvttps_epi32(g.py), iz = _mm256_cvttps_epi32(g.pz);
+  g.cx = _mm256_sub_epi32(_mm256_srai_epi32(ix, Brick::kCellShift), bc.cellLoX);
+  g.cy = _mm256_sub_epi32(_mm256_srai_epi32(iy, Brick::kCellShift), bc.cellLoY);
+  g.cz = _mm256_sub_epi32(_mm256_srai_epi32(iz, Brick::kCellShift), bc.cellLoZ);
+  const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane);
+  const __m256i cell = _mm256_and_si256(  // lanes past the segment look at cell 0
+      _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(g.cz, bc.countY), g.cy), bc.countX), g.cx),
+      inSegment);
+  g.reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(reachMap), cell, 1),
+                             _mm256_set1_epi32(0xFF));
+  g.visible =
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(g.reach, _mm256_setzero_si256()))) & ((1 << g.n) - 1);
+  g.offset = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, bc.loZ), bc.sz),
+                                               _mm256_mullo_epi32(_mm256_sub_epi32(iy, bc.loY), bc.sy)),
+                              _mm256_sub_epi32(ix, bc.loX));
+}
+
+//! Where t leaves, along one axis, the empty cubes of cells (absolute) `cell` with reach `reach`:
+//! the far face in the ray's direction (clamped to the owned box), +infinity when the ray is
+//! parallel to the axis. As RaySegment::resumeAfterEmpty.
+KDSWAP_AVX2 inline __m256 cubeExit(__m256i cell, __m256i reach, __m256 boxLo, __m256 boxHi, float origin, float direction,
+                                   float inverse) {
+  if (direction == 0.0f) return _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  const __m256 face =
+      direction > 0.0f
+          ? _mm256_min_ps(_mm256_cvtepi32_ps(_mm256_slli_epi32(_mm256_add_epi32(cell, reach), Brick::kCellShift)), boxHi)
+          : _mm256_max_ps(_mm256_cvtepi32_ps(_mm256_slli_epi32(
+                              _mm256_sub_epi32(cell, _mm256_sub_epi32(reach, _mm256_set1_epi32(1))), Brick::kCellShift)),
+                          boxLo);
+  return _mm256_mul_ps(_mm256_sub_ps(face, _mm256_set1_ps(origin)), _mm256_set1_ps(inverse));
+}
+
+//! The group's samples in `invisible` lie in empty cubes (see RaySegment::resumeAfterEmpty): the
+//! largest lattice index the ray may step on from, i.e. every sample before it and after the
+//! group's first is invisible or was in the group. Computed for all lanes at once; the farthest wins.
+KDSWAP_AVX2 inline long farthestResume(const BrickConstants& bc, const RaySegment& s, const Group& g, int invisible) {
+  const __m256 exitX = cubeExit(_mm256_add_epi32(g.cx, bc.cellLoX), g.reach, bc.boxLoX, bc.boxHiX, s.origin.x,
+                                s.direction.x, s.inverseDirection.x);
+  const __m256 exitY = cubeExit(_mm256_add_epi32(g.cy, bc.cellLoY), g.reach, bc.boxLoY, bc.boxHiY, s.origin.y,
+                                s.direction.y, s.inverseDirection.y);
+  const __m256 exitZ = cubeExit(_mm256_add_epi32(g.cz, bc.cellLoZ), g.reach, bc.boxLoZ, bc.boxHiZ, s.origin.z,
+                                s.direction.z, s.inverseDirection.z);
+  const __m256 tExit = _mm256_min_ps(_mm256_min_ps(exitX, exitY), exitZ);
+  // floor(tExit / step - phase), capped past the segment's end so the conversion cannot overflow.
+  __m256 index = _mm256_floor_ps(
+      _mm256_sub_ps(_mm256_mul_ps(tExit, _mm256_set1_ps(s.inverseStep)), _mm256_set1_ps(s.phase)));
+  index = _mm256_min_ps(index, _mm256_set1_ps(float(s.last) + 1.0f));
+  alignas(32) int at[kLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at), _mm256_cvttps_epi32(index));
+  long farthest = LONG_MIN;
+  for (int bits = invisible; bits != 0; bits &= bits - 1) farthest = std::max<long>(farthest, at[__builtin_ctz(bits)]);
+  return farthest - 1;  // one index early, for rounding, as the scalar rule
+}
+
+//! For each mask of eight lanes, the indices of its set lanes in order (lane j of the packed
+//! vector takes lane idx[j]); unused entries are 0. One byte per lane.
+struct PackTable {
+  std::uint64_t indices[256];
+  constexpr PackTable() : indices{} {
+    for (int mask = 0; mask < 256; ++mask) {
+      int packed = 0;
+      for (int j = 0; j < kLanes; ++j)
+        if (mask >> j & 1) indices[mask] |= std::uint64_t(j) << (8 * packed++);
+    }
+  }
+};
+constexpr PackTable kPackTable;
+
+//! Visible samples waiting to be shaded: lanes 0 .. size - 1, in lattice order.
+struct Waiting {
+  __m256 x, y, z;
+  __m256i offset;
+  int size;
 };
 
 //! Composites the first n shaded samples in order; true when the ray is done. It works on a local
@@ -200,135 +318,75 @@ KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, 
   return done;
 }
 
-KDSWAP_AVX2 bool flush(const MarchContext& m, const glm::vec3& toLight, PendingSamples& pending, FrontToBack& result, std::uint64_t& samples) {
-  const int n = pending.size;
-  if (n == 0) return false;
-  for (int j = n; j < kLanes; ++j)  // unused lanes repeat the last sample: loads stay in the brick
-    pending.x[j] = pending.x[n - 1], pending.y[j] = pending.y[n - 1], pending.z[j] = pending.z[n - 1],
-    pending.corner[j] = pending.corner[n - 1];
-  pending.size = 0;
+//! Shades the first `n` samples of (x, y, z, offset) and composites them in order; true when the
+//! ray is done.
+KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegment& s, const Voxel* data, __m256 x,
+                                          __m256 y, __m256 z, __m256i offset, int n, FrontToBack& result,
+                                          std::uint64_t& samples) {
+  alignas(32) int offsets[kLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), offset);
+  const Voxel* corner[kLanes];
+  for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
   Shaded8 shaded;
-  shade8(m, toLight, _mm256_load_ps(pending.x), _mm256_load_ps(pending.y), _mm256_load_ps(pending.z), pending.corner, shaded);
+  shade8(m, s.toLight, x, y, z, corner, shaded);
   return compositeInOrder(result, shaded, n, m.stopTransmittance, samples);
-}
-
-//! A brick's march constants in registers, set up once per batch of rays.
-struct BrickConstants {
-  __m256i lane, cellLoX, cellLoY, cellLoZ, countX, countY, loX, loY, loZ, sy, sz;
-  const Voxel* data;
-};
-
-KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
-  BrickConstants c;
-  c.lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  c.cellLoX = _mm256_set1_epi32(m.cellLo.x), c.cellLoY = _mm256_set1_epi32(m.cellLo.y),
-  c.cellLoZ = _mm256_set1_epi32(m.cellLo.z);
-  c.countX = _mm256_set1_epi32(m.cellCount.x), c.countY = _mm256_set1_epi32(m.cellCount.y);
-  c.loX = _mm256_set1_epi32(m.storedLo.x), c.loY = _mm256_set1_epi32(m.storedLo.y), c.loZ = _mm256_set1_epi32(m.storedLo.z);
-  c.sy = _mm256_set1_epi32(int(m.voxels.sy)), c.sz = _mm256_set1_epi32(int(m.voxels.sz));
-  c.data = m.voxels.data;
-  return c;
-}
-
-//! One ray's lattice in registers.
-struct RayLanes {
-  __m256 ox, oy, oz, dx, dy, dz, phase, step;
-};
-
-//! Samples k .. k + 7 of a ray (those up to `last`): points, cells, the cells' reach, voxel offsets.
-struct Group {
-  __m256 px, py, pz;
-  __m256i cx, cy, cz, cell, reach, offset;
-  int n, visible;  //!< samples in the segment; bit j: sample k + j lies in a cell that can be visible
-};
-
-KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConstants& bc, const RayLanes& r,
-                                                               const std::uint8_t* reachMap, long k, long last, Group& g) {
-  g.n = int(std::min<long>(kLanes, last - k + 1));
-  // Points k .. k + 7 exactly as RaySegment::point computes them (k + j fits an int: it is a
-  // sample index along one ray).
-  const __m256 t =
-      _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(int(k)), bc.lane)), r.phase), r.step);
-  g.px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), g.py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
-  g.pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
-  const __m256i ix = _mm256_cvttps_epi32(g.px), iy = _mm256_cvttps_epi32(g.py), iz = _mm256_cvttps_epi32(g.pz);
-  g.cx = _mm256_sub_epi32(_mm256_srai_epi32(ix, Brick::kCellShift), bc.cellLoX);
-  g.cy = _mm256_sub_epi32(_mm256_srai_epi32(iy, Brick::kCellShift), bc.cellLoY);
-  g.cz = _mm256_sub_epi32(_mm256_srai_epi32(iz, Brick::kCellShift), bc.cellLoZ);
-  const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane);
-  g.cell = _mm256_and_si256(  // lanes past the segment look at cell 0
-      _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(g.cz, bc.countY), g.cy), bc.countX), g.cx),
-      inSegment);
-  g.reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(reachMap), g.cell, 1),
-                             _mm256_set1_epi32(0xFF));
-  g.visible =
-      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(g.reach, _mm256_setzero_si256()))) & ((1 << g.n) - 1);
-  g.offset = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, bc.loZ), bc.sz),
-                                               _mm256_mullo_epi32(_mm256_sub_epi32(iy, bc.loY), bc.sy)),
-                              _mm256_sub_epi32(ix, bc.loX));
 }
 
 KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchContext& m, const BrickConstants& bc,
                                                                 const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
-  PendingSamples pending;
-  std::size_t lastJumpedCell = std::size_t(-1);
   const RayLanes r{_mm256_set1_ps(s.origin.x),    _mm256_set1_ps(s.origin.y),    _mm256_set1_ps(s.origin.z),
                    _mm256_set1_ps(s.direction.x), _mm256_set1_ps(s.direction.y), _mm256_set1_ps(s.direction.z),
                    _mm256_set1_ps(s.phase),       _mm256_set1_ps(s.step)};
-  const Voxel* const data = bc.data;
-
+  // Zeros before the first samples arrive: offset 0 is a voxel of the brick.
+  Waiting waiting{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
   long k = s.first;
   Group g;
   if (k <= s.last) groupAt(bc, r, m.reach, k, s.last, g);
   while (k <= s.last) {
-    alignas(32) int offsets[kLanes];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), g.offset);
-    if (g.visible == 0xFF) {  // eight visible samples in a row: shade them straight from registers
-      // The next group first: its visibility test is then settled by the time the loop branches
-      // on it (a mispredicted branch costs far less than one waiting on a gather).
-      const long kNext = k + kLanes;
-      Group next;
-      if (kNext <= s.last) groupAt(bc, r, m.reach, kNext, s.last, next);
-      if (flush(m, s.toLight, pending, result, samples)) return result.rgba();
-      const Voxel* corner[kLanes];
-      for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
-      Shaded8 shaded;
-      shade8(m, s.toLight, g.px, g.py, g.pz, corner, shaded);
-      if (compositeInOrder(result, shaded, kLanes, m.stopTransmittance, samples)) return result.rgba();
-      k = kNext;
-      g = next;
-      continue;
-    }
-    // Otherwise sample by sample, as the scalar march: visible ones wait in `pending`, the first
-    // invisible one jumps across its empty region.
-    alignas(32) float x[kLanes], y[kLanes], z[kLanes];
-    alignas(32) int cells[kLanes], reaches[kLanes], cxs[kLanes], cys[kLanes], czs[kLanes];
-    _mm256_store_ps(x, g.px), _mm256_store_ps(y, g.py), _mm256_store_ps(z, g.pz);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(cells), g.cell);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(reaches), g.reach);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(cxs), g.cx);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(cys), g.cy);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(czs), g.cz);
-    const int n = g.n;
-    long next = k + n;
-    for (int j = 0; j < n; ++j) {
-      if (reaches[j] == 0) {
-        PendingSamples& p = pending;
-        p.x[p.size] = x[j], p.y[p.size] = y[j], p.z[p.size] = z[j], p.corner[p.size] = data + offsets[j];
-        if (++p.size == kLanes && flush(m, s.toLight, pending, result, samples)) return result.rgba();
-        continue;
+    // Where the ray goes on: past the group, or, when it ends in empty space, past the farthest
+    // empty cube its invisible samples lie in. The next group's test starts before this group's
+    // shading, which hides the gather's latency.
+    long kNext = k + g.n;
+    const int full = (1 << g.n) - 1;
+    if (!(g.visible >> (g.n - 1) & 1)) kNext = std::max(kNext, farthestResume(bc, s, g, ~g.visible & full) + 1);
+    Group next;
+    if (kNext <= s.last) groupAt(bc, r, m.reach, kNext, s.last, next);
+
+    if (g.visible == 0xFF && waiting.size == 0) {  // dense data: eight in a row, nothing to pack
+      if (shadeAndComposite(m, s, bc.data, g.px, g.py, g.pz, g.offset, kLanes, result, samples)) return result.rgba();
+    } else if (g.visible != 0) {
+      // Pack the visible lanes behind the waiting ones: lane j of the rotated pack takes the
+      // group's (j - size) mod 8-th visible sample, so lanes below `size` keep the waiting samples
+      // and any overflow wraps to the front, where it waits for the next eight.
+      const int count = __builtin_popcount(unsigned(g.visible));
+      const __m256i packed = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(std::int64_t(kPackTable.indices[g.visible])));
+      const __m256i size = _mm256_set1_epi32(waiting.size);
+      const __m256i pick =
+          _mm256_permutevar8x32_epi32(packed, _mm256_and_si256(_mm256_sub_epi32(bc.lane, size), _mm256_set1_epi32(7)));
+      const __m256 x = _mm256_permutevar8x32_ps(g.px, pick), y = _mm256_permutevar8x32_ps(g.py, pick),
+                   z = _mm256_permutevar8x32_ps(g.pz, pick);
+      const __m256i offset = _mm256_permutevar8x32_epi32(g.offset, pick);
+      const __m256 keep = _mm256_castsi256_ps(_mm256_cmpgt_epi32(size, bc.lane));
+      waiting.x = _mm256_blendv_ps(x, waiting.x, keep), waiting.y = _mm256_blendv_ps(y, waiting.y, keep),
+      waiting.z = _mm256_blendv_ps(z, waiting.z, keep);
+      waiting.offset = _mm256_castps_si256(
+          _mm256_blendv_ps(_mm256_castsi256_ps(offset), _mm256_castsi256_ps(waiting.offset), keep));
+      waiting.size += count;
+      if (waiting.size >= kLanes) {
+        if (shadeAndComposite(m, s, bc.data, waiting.x, waiting.y, waiting.z, waiting.offset, kLanes, result, samples))
+          return result.rgba();
+        waiting.size -= kLanes;
+        waiting.x = x, waiting.y = y, waiting.z = z, waiting.offset = offset;  // the overflow, at the front
       }
-      const std::size_t c = std::size_t(cells[j]);
-      if (c == lastJumpedCell) continue;  // landed just short of the exit: step on
-      lastJumpedCell = c;
-      next = std::max(k + j, s.resumeAfterEmpty(m, glm::ivec3(cxs[j], cys[j], czs[j]), reaches[j])) + 1;
-      break;
     }
-    k = next;
-    if (k <= s.last) groupAt(bc, r, m.reach, k, s.last, g);
+    k = kNext;
+    g = next;
   }
-  flush(m, s.toLight, pending, result, samples);
+  // The last few: the lanes past `size` hold samples of the segment (never an address outside
+  // the brick), and only the first `size` are composited.
+  if (waiting.size > 0)
+    shadeAndComposite(m, s, bc.data, waiting.x, waiting.y, waiting.z, waiting.offset, waiting.size, result, samples);
   return result.rgba();
 }
 
