@@ -86,14 +86,22 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   if (Brick::storedBoxFor(owned, dims).count() != std::int64_t(m.payload.size()))
     throw Error("node " + std::to_string(comm.rank()) + ": brick message holds the wrong number of voxels");
   node.rank = comm.rank();
-  if (m.header.size() == 10)
-    node.pieces.insert_or_assign(int(m.header[9]),
-                                 Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes));
-  else
+  if (m.header.size() == 10) {
+    const int piece = int(m.header[9]);
+    node.pieces.insert_or_assign(piece, Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes));
+    node.pieceEmptySpace.erase(piece);
+  } else {
     node.brick = Brick(owned, dims, spacing, std::move(m.payload));
+    node.brickEmptySpace.clear();
+  }
 }
 
 namespace {
+
+std::shared_ptr<const EmptySpaceMap> emptySpaceFor(EmptySpaceCache& cache, const Brick& brick, const FramePlan& plan) {
+  const glm::vec2 map = normalisingScaleBias(plan.valueRange);
+  return cache.mapFor(brick, plan.table, map.x, map.y, plan.request.settings.skipEmptySpace);
+}
 
 // Over-decomposition: ship the bricks others render this frame, render the assigned bricks,
 // send each foreign brick's image to its home and composite the home's bricks front to back
@@ -115,7 +123,8 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
     if (it == node.pieces.end())
       throw Error("node " + std::to_string(rank) + ": was given brick " + std::to_string(brick) + " but does not hold it");
     RenderCounters counters;
-    const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange, plan.occlusion);
+    const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
+                           emptySpaceFor(node.pieceEmptySpace[brick], it->second, plan));
     rendered.emplace_back(brick, caster.render(plan.camera, counters));
     report.renderSeconds += counters.seconds;
     report.rays += counters.rays;
@@ -168,7 +177,8 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     partial = renderPieces(node, comm, plan, report, observer);
   } else {
     RenderCounters counters;
-    const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion);
+    const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
+                           emptySpaceFor(node.brickEmptySpace, node.brick, plan));
     partial = caster.render(plan.camera, counters);
     // Keep only the rectangle the brick's rays reached: the pixels around it are empty ("over"
     // with an empty pixel changes nothing), and with every node's partial image alive at once

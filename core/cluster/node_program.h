@@ -10,6 +10,7 @@
 #include "core/cluster/phase_record.h"
 #include "core/comm/communicator.h"
 #include "core/metrics/node_report.h"
+#include "core/render/empty_space_cache.h"
 #include "core/volume/brick.h"
 
 namespace kdswap {
@@ -26,6 +27,10 @@ struct NodeState {
   //! Over-decomposition: sub-bricks by global brick number, its own ones and those shipped to it
   //! to render (kept for later frames, so a brick travels to a node once).
   std::map<int, Brick> pieces;
+  //! Each brick's empty-space map, kept while the transfer function's visible entries stay
+  //! (cleared when the brick is received again).
+  EmptySpaceCache brickEmptySpace;
+  std::map<int, EmptySpaceCache> pieceEmptySpace;
 };
 
 //! A brick message: the voxels of Brick::storedBoxFor(owned, dims), with `piece` >= 0 for an

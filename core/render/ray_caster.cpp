@@ -21,6 +21,7 @@
 #include "core/render/ray_setup.h"
 #include "core/render/trilinear.h"
 #include "core/render/voxel_ray.h"
+#include "core/util/check.h"
 #include "core/util/clock.h"
 
 #if defined(__GNUC__)
@@ -93,17 +94,19 @@ struct OwnedRun {
 }  // namespace
 
 RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
-                     const OcclusionMap* occlusion)
+                     const OcclusionMap* occlusion, std::shared_ptr<const EmptySpaceMap> emptySpace)
     : brick_(brick),
       table_(table),
       settings_(settings),
       scale_(normalisingScaleBias(valueRange).x),
       bias_(normalisingScaleBias(valueRange).y),
-      emptySpace_(brick, table, scale_, bias_, settings.skipEmptySpace),
+      emptySpace_(emptySpace ? std::move(emptySpace)
+                             : std::make_shared<const EmptySpaceMap>(brick, table, scale_, bias_, settings.skipEmptySpace)),
       occlusion_(occlusion),
       march_{ShadingParameters{}, VoxelAddressing(brick)},
       // The SIMD march indexes voxels with 32-bit offsets.
       marchFunction_(brick.stored().count() < (std::int64_t(1) << 31) ? selectedMarchFunction() : &marchScalar) {
+  KDSWAP_CHECK(emptySpace_->cellCount() == brick.cellCount());  // a map made for another brick
   specular_.resize(kSpecularEntries + 1);
   for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
   ShadingParameters& shading = march_.shading;
@@ -113,9 +116,9 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   shading.ambient = settings.ambient, shading.diffuse = settings.diffuse, shading.specular = settings.specular;
   shading.specularTable = specular_.data();
   march_.storedLo = brick.stored().lo;
-  march_.reach = emptySpace_.reachData();
+  march_.reach = emptySpace_->reachData();
   march_.cellLo = brick.cellLo();
-  march_.cellCount = emptySpace_.cellCount();
+  march_.cellCount = emptySpace_->cellCount();
   march_.lo = glm::vec3(brick.owned().lo), march_.hi = glm::vec3(brick.owned().hi);
   march_.stopTransmittance = std::max(0.0f, 1.0f - settings.earlyTermination);
 }
@@ -125,7 +128,7 @@ void RayCaster::useMarch(MarchFunction march) {
 }
 
 Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedFrom) const {
-  if (!emptySpace_.anyVisible()) return Rgba{};
+  if (!emptySpace_->anyVisible()) return Rgba{};
   RaySegment segment;
   if (!segmentFor(VoxelRay(ray, brick_.spacing(), settings_), -ray.direction, clipBox(), counters, occludedFrom, segment))
     return Rgba{};
@@ -136,7 +139,7 @@ Rgba RayCaster::castRay(const Ray& ray, RenderCounters& counters, long occludedF
 
 RayCaster::ClipBox RayCaster::clipBox() const {
   const glm::vec3 hi(brick_.owned().hi);
-  return ClipBox{emptySpace_.visibleLo(), emptySpace_.visibleHi(), std::max({std::fabs(hi.x), std::fabs(hi.y), std::fabs(hi.z)}) + 1.0f};
+  return ClipBox{emptySpace_->visibleLo(), emptySpace_->visibleHi(), std::max({std::fabs(hi.x), std::fabs(hi.y), std::fabs(hi.z)}) + 1.0f};
 }
 
 // Inlined into render's pixel loop: the ray then stays in registers instead of passing through
@@ -206,7 +209,7 @@ long RayCaster::firstLatticeIndexBound(const Camera& camera, float step) const {
   // through the eye). Over a box the dot product is least at a corner. The box is grown by a voxel
   // and the index lowered by three for the clip's margins and rounding: a weaker bound is still a bound.
   const glm::vec3 spacing = brick_.spacing();
-  const glm::vec3 lo = (emptySpace_.visibleLo() - 1.0f) * spacing, hi = (emptySpace_.visibleHi() + 1.0f) * spacing;
+  const glm::vec3 lo = (emptySpace_->visibleLo() - 1.0f) * spacing, hi = (emptySpace_->visibleHi() + 1.0f) * spacing;
   const glm::vec3 toLo = lo - camera.eye(), toHi = hi - camera.eye(), f = camera.forward();
   const float tLow = std::min(toLo.x * f.x, toHi.x * f.x) + std::min(toLo.y * f.y, toHi.y * f.y) +
                      std::min(toLo.z * f.z, toHi.z * f.z);
@@ -217,9 +220,9 @@ long RayCaster::firstLatticeIndexBound(const Camera& camera, float step) const {
 }
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
-  if (!emptySpace_.anyVisible()) return Image{};
+  if (!emptySpace_->anyVisible()) return Image{};
   const glm::vec3 spacing = brick_.spacing();
-  const Rect rect = camera.projectBox(emptySpace_.visibleLo() * spacing, emptySpace_.visibleHi() * spacing);
+  const Rect rect = camera.projectBox(emptySpace_->visibleLo() * spacing, emptySpace_->visibleHi() * spacing);
   Image image(rect);
   if (rect.empty()) return image;
   const ClipBox clip = clipBox();

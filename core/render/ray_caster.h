@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -32,9 +33,11 @@ class RayCaster {
  public:
   //! `valueRange` maps scalars to [0, 1]. The caster keeps references: all must outlive it.
   //! With `occlusion`, each ray stops at the lattice index from which the single-node ray's
-  //! samples certainly no longer count (see occlusion_map.h).
+  //! samples certainly no longer count (see occlusion_map.h). `emptySpace`, when given, is this
+  //! brick's map under this table, mapping and settings (kept across frames by an EmptySpaceCache);
+  //! otherwise the caster builds its own.
   RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
-            const OcclusionMap* occlusion = nullptr);
+            const OcclusionMap* occlusion = nullptr, std::shared_ptr<const EmptySpaceMap> emptySpace = nullptr);
 
   //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
   //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
@@ -72,7 +75,7 @@ class RayCaster {
   const TransferTable& table_;
   const RenderSettings& settings_;
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
-  EmptySpaceMap emptySpace_;     //!< invisible macro cells under this transfer function
+  std::shared_ptr<const EmptySpaceMap> emptySpace_;  //!< invisible macro cells under this transfer function
   const OcclusionMap* occlusion_;
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
   MarchContext march_;           //!< the brick's constants for the sample loop

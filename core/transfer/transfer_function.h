@@ -86,6 +86,9 @@ class TransferTable {
   //! True when some lookup(s) with s in [s0, s1] can have opacity > 0 (conservative by one entry
   //! on each side). Constant time: empty-space skipping asks it for every macro cell.
   bool anyVisible(float s0, float s1) const;
+  //! Entry i: how many entries before i have opacity > 0. Tables with equal counts give equal
+  //! anyVisible answers (what empty-space maps are built from).
+  const std::vector<int>& visibleCounts() const { return visibleBefore_; }
 
  private:
   std::vector<glm::vec4> entries_;
