@@ -1,5 +1,5 @@
 // Empty-space skipping: the cell distance map is the true chessboard distance, and rays that jump
-// over invisible regions give exactly the image of rays that sample every lattice point.
+// over invisible regions give the image of rays that sample every lattice point (to rounding).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -50,7 +50,7 @@ TEST_CASE("the cell distance map is the chessboard distance to the nearest visib
     }
 }
 
-TEST_CASE("skipping empty space changes no pixel, only the number of samples taken") {
+TEST_CASE("skipping empty space changes no pixel beyond rounding, only the number of samples taken") {
   struct Case {
     std::string data, transfer;
   };
@@ -82,7 +82,10 @@ TEST_CASE("skipping empty space changes no pixel, only the number of samples tak
         CAPTURE(c.transfer);
         CAPTURE(azimuth);
         CAPTURE(brick.owned().lo.x);
-        CHECK(maxAbsDifference(a.image, b.image, b.image.rect()) == 0.0f);
+        // Samples are composited in groups of eight taken samples (FrontToBack::addEight), so
+        // leaving out invisible ones regroups the rest: equal to rounding (seen: <= 3e-7), while a
+        // visible sample left out would show far above that.
+        CHECK(maxAbsDifference(a.image, b.image, b.image.rect()) <= 1e-6f);
         CHECK(a.counters.samples < b.counters.samples);
       }
   }

@@ -4,7 +4,9 @@
 // checked with whichever march the machine selects; this pins the two marches to each other.)
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstring>
+#include <random>
 #include <string>
 
 #include "core/render/ray_caster.h"
@@ -106,4 +108,47 @@ TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with
         }
   }
   CHECK(totalSamples > 1000000);  // the comparison saw real work, not empty frames
+}
+
+TEST_CASE("compositing eight at a time equals sample-by-sample front-to-back over, and stops at the same sample") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  int stoppedGroups = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = 1 + trial % FrontToBack::kGroup;
+    ShadedSample s[FrontToBack::kGroup] = {};
+    for (int j = 0; j < n; ++j) {
+      // A third of the samples invisible (opacity 0), the rest up to 0.35.
+      const float a = unit(rng) < 0.33f ? 0.0f : 0.35f * unit(rng);
+      s[j] = ShadedSample{unit(rng), unit(rng), unit(rng), a};
+    }
+    const float start = 0.2f + 0.8f * unit(rng), stop = trial % 3 == 0 ? 0.0f : 0.25f;
+    // Reference: "over" one sample at a time, in double precision.
+    double r = 0, g = 0, b = 0, t = start;
+    int expectedTaken = n;
+    bool expectedDone = false;
+    for (int j = 0; j < n; ++j) {
+      if (s[j].a <= 0.0f) continue;
+      r += t * s[j].a * s[j].r, g += t * s[j].a * s[j].g, b += t * s[j].a * s[j].b;
+      t *= 1.0 - s[j].a;
+      if (t <= stop) {
+        expectedTaken = j + 1, expectedDone = true;
+        break;
+      }
+    }
+    if (std::fabs(t - stop) < 1e-4) continue;  // too close to the threshold for float and double to agree
+    FrontToBack eight;
+    eight.transmittance = start;
+    int taken = -1;
+    const bool done = eight.addEight(s, n, stop, taken);
+    CAPTURE(trial);
+    CHECK(done == expectedDone);
+    CHECK(taken == expectedTaken);
+    CHECK(std::fabs(eight.r - r) < 1e-6);
+    CHECK(std::fabs(eight.g - g) < 1e-6);
+    CHECK(std::fabs(eight.b - b) < 1e-6);
+    CHECK(std::fabs(eight.transmittance - t) < 1e-6);
+    stoppedGroups += done;
+  }
+  CHECK(stoppedGroups > 100);  // the threshold was reached often enough to test the stop
 }

@@ -9,6 +9,8 @@ namespace {
 
 Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
+  ShadedSample group[FrontToBack::kGroup];  // visible samples, composited eight at a time
+  int waiting = 0, taken = 0;
   std::size_t lastJumpedCell = std::size_t(-1);
   for (long k = s.first; k <= s.last; ++k) {
     const glm::vec3 p = s.point(k);
@@ -21,8 +23,16 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
       k = std::max(k, s.resumeAfterEmpty(m, c, reach));
       continue;
     }
-    ++samples;
-    if (result.add(shadeSample(m.shading, s.toLight, m.voxels, p, floor), m.stopTransmittance)) break;
+    group[waiting++] = shadeSample(m.shading, s.toLight, m.voxels, p, floor);
+    if (waiting < FrontToBack::kGroup) continue;
+    const bool done = result.addEight(group, waiting, m.stopTransmittance, taken);
+    samples += std::uint64_t(taken);
+    waiting = 0;
+    if (done) return result.rgba();
+  }
+  if (waiting > 0) {
+    result.addEight(group, waiting, m.stopTransmittance, taken);
+    samples += std::uint64_t(taken);
   }
   return result.rgba();
 }

@@ -61,22 +61,62 @@ struct RaySegment {
   }
 };
 
-//! Front-to-back "over" of shaded samples, in lattice order. It carries the transmittance
-//! T = prod(1 - a) rather than the opacity: then each sample's dependency chain is a single
-//! multiply (T *= 1 - a), not a subtract, multiply and add, which bounds the march's speed.
+//! Front-to-back "over" of shaded samples, in lattice order, eight at a time. It carries the
+//! transmittance T = prod(1 - a) rather than the opacity. Within a group of eight the products and
+//! sums are formed as trees, not one sample after another, so the SIMD march does a group in a few
+//! vector operations instead of a serial chain of eight; addEight is that arithmetic written out
+//! lane by lane, which the SIMD march must match bit for bit. Grouping depends on which samples are
+//! taken, so images with and without empty-space skipping agree to rounding, not to the bit.
 struct FrontToBack {
+  static constexpr int kGroup = 8;
   float r = 0.0f, g = 0.0f, b = 0.0f, transmittance = 1.0f;
-  //! Adds one sample; true once the ray is opaque enough to stop (early ray termination).
-  bool add(const ShadedSample& s, float stopTransmittance) {
-    if (s.a <= 0.0f) return false;
-    const float w = transmittance * s.a;
-    r += w * s.r;
-    g += w * s.g;
-    b += w * s.b;
-    transmittance *= 1.0f - s.a;
-    return transmittance <= stopTransmittance;
+
+  //! Adds samples s[0 .. n-1] (n <= 8, the rest ignored). True once the ray is opaque enough to
+  //! stop (early ray termination); `taken` is then the samples up to the one that stopped it,
+  //! otherwise n. A group with no sample of opacity > 0 changes nothing and never stops the ray.
+  bool addEight(const ShadedSample* s, int n, float stopTransmittance, int& taken) {
+    float a[kGroup], y[kGroup], step[kGroup];
+    bool counts[kGroup], any = false;
+    for (int j = 0; j < kGroup; ++j) {
+      counts[j] = j < n && !(s[j].a <= 0.0f);  // as "over": a sample of opacity 0 is no sample
+      a[j] = counts[j] ? s[j].a : 0.0f;
+      any = any || counts[j];
+    }
+    taken = n;
+    if (!any) return false;
+    // Inclusive prefix products of (1 - a) by doubling: lane j multiplies in lane j - 1, then
+    // j - 2, then j - 4 (lanes below take 1).
+    for (int j = 0; j < kGroup; ++j) y[j] = 1.0f - a[j];
+    for (int shift = 1; shift < kGroup; shift *= 2) {
+      for (int j = 0; j < kGroup; ++j) step[j] = y[j] * (j >= shift ? y[j - shift] : 1.0f);
+      for (int j = 0; j < kGroup; ++j) y[j] = step[j];
+    }
+    int last = n - 1;
+    bool done = false;
+    for (int j = 0; j < n; ++j)
+      if (counts[j] && transmittance * y[j] <= stopTransmittance) {  // only a visible sample stops it
+        last = j;
+        done = true;
+        break;
+      }
+    float wr[kGroup], wg[kGroup], wb[kGroup];
+    for (int j = 0; j < kGroup; ++j) {
+      const float w = j > last && done ? 0.0f : (transmittance * (j >= 1 ? y[j - 1] : 1.0f)) * a[j];
+      const bool inGroup = j < n;  // samples past n may be unset: their weight is 0, their colour too
+      wr[j] = w * (inGroup ? s[j].r : 0.0f), wg[j] = w * (inGroup ? s[j].g : 0.0f), wb[j] = w * (inGroup ? s[j].b : 0.0f);
+    }
+    r += treeSum(wr), g += treeSum(wg), b += treeSum(wb);
+    transmittance = transmittance * y[last];
+    taken = last + 1;
+    return done;
   }
   Rgba rgba() const { return Rgba{r, g, b, 1.0f - transmittance}; }
+
+  //! (v0 + v4) + (v2 + v6), plus (v1 + v5) + (v3 + v7): the order of a 256-bit horizontal add.
+  static float treeSum(const float* v) {
+    const float q0 = v[0] + v[4], q1 = v[1] + v[5], q2 = v[2] + v[6], q3 = v[3] + v[7];
+    return (q0 + q2) + (q1 + q3);
+  }
 };
 
 //! Marches `count` segments of one brick: colours[i] is segment i's colour. Adds the samples taken

@@ -166,9 +166,9 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 
 // ---- [The march] --------------------------------------------------------------------------------
 // Every group of eight consecutive lattice samples is tested against the empty-space map at once;
 // its visible samples are packed, in order, behind those still waiting from earlier groups, and
-// each time eight are waiting they are shaded and composited together. The samples composited are
-// therefore exactly the scalar march's (every sample in a visible cell, in lattice order), with no
-// lane wasted except in a ray's last, partial eight. Where a group ends in empty space the ray
+// each time eight are waiting they are shaded and composited together (FrontToBack::addEight, in
+// lanes). The groups are therefore exactly the scalar march's (every sample in a visible cell, in
+// lattice order, eight at a time), with no lane wasted except in a ray's last, partial eight. Where a group ends in empty space the ray
 // jumps to the farthest exit of the empty cubes around its invisible samples.
 
 //! Samples k .. k + 7 of a ray (those up to `last`): points, cells, the cells' reach, voxel offsets.
@@ -288,34 +288,56 @@ struct Waiting {
   int size;
 };
 
-//! Composites the first n shaded samples in order; true when the ray is done. It works on a local
-//! copy of the accumulator, which stays in registers across the loop (the caller's lives in
-//! memory, and a store and reload per sample would lengthen the serial chain).
-//! Samples with zero opacity change nothing (FrontToBack::add), so only contributing lanes are visited.
-KDSWAP_AVX2 inline bool compositeInOrder(FrontToBack& result, const Shaded8& s, int n, float stopTransmittance,
-                                         std::uint64_t& samples) {
-  // FrontToBack::add, step by step, on scalar locals: kept as one struct the accumulator was
-  // repacked into a vector register on every sample.
-  float r = result.r, g = result.g, b = result.b, transmittance = result.transmittance;
-  bool done = false;
-  int counted = n;
-  for (int bits = s.contributing & ((1 << n) - 1); bits != 0; bits &= bits - 1) {
-    const int j = __builtin_ctz(bits);
-    const float a = s.a[j];  // contributing: !(a <= 0), so add() would not return early
-    const float w = transmittance * a;
-    r += w * s.r[j];
-    g += w * s.g[j];
-    b += w * s.b[j];
-    transmittance *= 1.0f - a;
-    if (transmittance <= stopTransmittance) {
-      counted = j + 1;  // the scalar march counts up to the sample that ends the ray
-      done = true;
-      break;
-    }
+//! FrontToBack::treeSum of the eight lanes.
+KDSWAP_AVX2 inline float horizontalSum(__m256 v) {
+  const __m128 q = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));  // v0 + v4, ..
+  const __m128 h = _mm_add_ps(q, _mm_movehl_ps(q, q));                                   // q0 + q2, q1 + q3
+  return _mm_cvtss_f32(_mm_add_ss(h, _mm_shuffle_ps(h, h, 1)));
+}
+
+//! Lane j takes lane `from[j]` of v; lanes in `ones` (a blend mask) take 1.
+template <int ones>
+KDSWAP_AVX2 inline __m256 shifted(__m256 v, __m256i from) {
+  return _mm256_blend_ps(_mm256_permutevar8x32_ps(v, from), _mm256_set1_ps(1.0f), ones);
+}
+
+//! FrontToBack::addEight on the first n shaded samples, in lanes: the same operations, so the
+//! same bits; adds the samples taken to `samples`.
+KDSWAP_AVX2 inline bool compositeEight(FrontToBack& result, const Shaded8& s, int n, float stopTransmittance,
+                                       std::uint64_t& samples) {
+  const int inGroup = (1 << n) - 1;
+  if ((s.contributing & inGroup) == 0) {  // nothing visible: no change, no stop
+    samples += std::uint64_t(n);
+    return false;
   }
-  result.r = r, result.g = g, result.b = b, result.transmittance = transmittance;
-  samples += std::uint64_t(counted);
-  return done;
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256 rawA = _mm256_load_ps(s.a);
+  const __m256 counts = _mm256_and_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(n), lane)),
+                                      _mm256_cmp_ps(rawA, _mm256_setzero_ps(), _CMP_NLE_UQ));
+  const __m256 a = _mm256_and_ps(rawA, counts);
+  const __m256i back1 = _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6), back2 = _mm256_setr_epi32(0, 0, 0, 1, 2, 3, 4, 5),
+                back4 = _mm256_setr_epi32(0, 0, 0, 0, 0, 1, 2, 3);
+  __m256 y = _mm256_sub_ps(one, a);
+  y = _mm256_mul_ps(y, shifted<0x01>(y, back1));
+  y = _mm256_mul_ps(y, shifted<0x03>(y, back2));
+  y = _mm256_mul_ps(y, shifted<0x0F>(y, back4));
+  const __m256 t = _mm256_set1_ps(result.transmittance);
+  const __m256 inclusive = _mm256_mul_ps(t, y);
+  __m256 w = _mm256_mul_ps(_mm256_mul_ps(t, shifted<0x01>(y, back1)), a);
+  const int stops = _mm256_movemask_ps(_mm256_and_ps(
+      _mm256_cmp_ps(inclusive, _mm256_set1_ps(stopTransmittance), _CMP_LE_OQ), counts));  // a visible sample stops it
+  int last = n - 1;
+  if (stops) {
+    last = __builtin_ctz(unsigned(stops));
+    w = _mm256_and_ps(w, _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(last + 1), lane)));
+  }
+  result.r += horizontalSum(_mm256_mul_ps(w, _mm256_load_ps(s.r)));
+  result.g += horizontalSum(_mm256_mul_ps(w, _mm256_load_ps(s.g)));
+  result.b += horizontalSum(_mm256_mul_ps(w, _mm256_load_ps(s.b)));
+  result.transmittance = _mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(inclusive, _mm256_set1_epi32(last))));
+  samples += std::uint64_t(last + 1);
+  return stops != 0;
 }
 
 //! Shades the first `n` samples of (x, y, z, offset) and composites them in order; true when the
@@ -329,7 +351,7 @@ KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegmen
   for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
   Shaded8 shaded;
   shade8(m, s.toLight, x, y, z, corner, shaded);
-  return compositeInOrder(result, shaded, n, m.stopTransmittance, samples);
+  return compositeEight(result, shaded, n, m.stopTransmittance, samples);
 }
 
 KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchContext& m, const BrickConstants& bc,
