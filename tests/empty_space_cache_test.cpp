@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/render/empty_space_cache.h"
+#include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "test_support.h"
 
@@ -31,7 +32,7 @@ TransferFunction ramp(float threshold, float hue) {
 
 TEST_CASE("an empty-space map is kept while the visible entries, mapping and switch stay, rebuilt otherwise") {
   auto volume = test::makeBlobs(glm::ivec3(40, 36, 33));
-  const Brick brick = test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(40, 36, 33)});
+  const Brick brick = wholeVolumeBrick(*volume);
   const TransferTable base(ramp(0.5f, 0.1f), 0.5f);
   const TransferTable recoloured(ramp(0.5f, 0.8f), 0.5f);  // other colours, same entries with opacity > 0
   const TransferTable lower(ramp(0.2f, 0.1f), 0.5f);       // more entries visible

@@ -43,11 +43,13 @@ std::vector<std::uint8_t> EmptySpaceMap::chessboardDistance(std::vector<std::uin
 EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, float scale, float bias, bool enabled)
     : cellCount_(brick.cellCount()) {
   if (brick.empty()) return;
-  const std::vector<glm::vec2>& ranges = brick.cellRanges();
+  const CellRangeCodes& ranges = brick.cellRanges();
   std::vector<std::uint8_t> invisible(ranges.size(), 0);
   if (enabled)
-    for (std::size_t i = 0; i < ranges.size(); ++i)
-      invisible[i] = ranges[i].x <= ranges[i].y && !table.anyVisible(ranges[i].x * scale + bias, ranges[i].y * scale + bias);
+    for (std::size_t i = 0; i < ranges.size(); ++i) {
+      const glm::vec2 r = ranges.range(i);
+      invisible[i] = r.x <= r.y && !table.anyVisible(r.x * scale + bias, r.y * scale + bias);
+    }
   // Tight box around the cells that can be visible: outside it every sample is invisible.
   const glm::ivec3 n = cellCount_, c0 = brick.cellLo();
   glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());

@@ -1,6 +1,6 @@
 // EmptySpaceMap: which macro cells of a brick can hold a visible sample under one transfer function,
 // and, for every other cell, how far the invisible region around it reaches, so a ray crosses a
-// whole empty region in one jump instead of one jump per 8-voxel cell. Skipping loses nothing: only
+// whole empty region in one jump instead of one jump per 4-voxel cell. Skipping loses nothing: only
 // samples whose opacity is certainly 0 are left out, so images equal those without skipping up to
 // float rounding (the samples taken are composited in groups of eight: FrontToBack::addEight).
 #pragma once

@@ -22,10 +22,10 @@ namespace kdswap {
 
 //! Value range of every cell of the whole volume: cell c holds the samples whose floor lies in
 //! [4c, 4c + 4) and the range covers every voxel they touch. A cell cut by bricks takes the union
-//! of their ranges. Finer than the bricks' 8^3 empty-space cells: an opaque layer a few voxels
+//! of their ranges. Cells of 4^3, like the bricks' empty-space cells: an opaque layer a few voxels
 //! thick (a skull, a dense region of a turbulent field) fills whole 4^3 cells far more often than
 //! 8^3 ones, and only cells it fills count as opaque (turbulence at P = 64: 9.4 M -> 6.2 M samples).
-//! Culling only: empty-space skipping keeps 8^3 cells, whose longer jumps suit it better.
+//! Kept as floats for the whole volume (replicated, read by every node's culling).
 struct CellRangeGrid {
   static constexpr int kShift = 2;  //!< cells of 2^kShift voxels per axis
 

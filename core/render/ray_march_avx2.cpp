@@ -168,8 +168,9 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 
 // its visible samples are packed, in order, behind those still waiting from earlier groups, and
 // each time eight are waiting they are shaded and composited together (FrontToBack::addEight, in
 // lanes). The groups are therefore exactly the scalar march's (every sample in a visible cell, in
-// lattice order, eight at a time), with no lane wasted except in a ray's last, partial eight. Where a group ends in empty space the ray
-// jumps to the farthest exit of the empty cubes around its invisible samples.
+// lattice order, eight at a time), with no lane wasted except in a ray's last, partial eight.
+// Where a group ends in empty space the ray jumps to the farthest exit of the empty cubes around
+// its invisible samples.
 
 //! Samples k .. k + 7 of a ray (those up to `last`): points, cells, the cells' reach, voxel offsets.
 struct Group {

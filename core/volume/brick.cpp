@@ -92,9 +92,10 @@ void Brick::buildCells() {
   cellLo_ = owned_.lo >> kCellShift;
   const glm::ivec3 cellHi = ((owned_.hi - 1) >> kCellShift) + 1;
   cellCount_ = cellHi - cellLo_;
-  cellRanges_.assign(std::size_t(cellCount_.x) * cellCount_.y * cellCount_.z,
-                     glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
-  widenCellRanges(kCellShift, cellLo_, cellCount_, cellRanges_);
+  std::vector<glm::vec2> ranges(std::size_t(cellCount_.x) * cellCount_.y * cellCount_.z,
+                                glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
+  widenCellRanges(kCellShift, cellLo_, cellCount_, ranges);
+  cellRanges_ = CellRangeCodes(ranges);
 }
 
 void Brick::widenCellRanges(int shift, const glm::ivec3& cellLo, const glm::ivec3& cellCount,

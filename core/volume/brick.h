@@ -12,6 +12,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/volume/cell_range_codes.h"
 #include "core/volume/voxel_box.h"
 
 namespace kdswap {
@@ -66,16 +67,17 @@ class Brick {
 
   //! Bytes of this node's private memory held by the brick.
   std::uint64_t bytes() const {
-    return voxels_.size() * sizeof(Voxel) + shell_.size() * sizeof(float) + cellRanges_.size() * sizeof(glm::vec2);
+    return voxels_.size() * sizeof(Voxel) + shell_.size() * sizeof(float) + cellRanges_.bytes();
   }
 
   //! Macro cells for empty-space skipping: cell c covers samples whose floor lies in
-  //! [8c, 8c + 8) (global voxel index, per axis) and stores the min and max of every voxel a
-  //! trilinear sample there can touch. Sample values in the cell lie within that range.
-  static constexpr int kCellShift = 3;
+  //! [4c, 4c + 4) (global voxel index, per axis) and keeps a range containing the min and max of
+  //! every voxel a trilinear sample there can touch (CellRangeCodes: 2 bytes a cell). Sample
+  //! values in the cell lie within that range.
+  static constexpr int kCellShift = 2;
   const glm::ivec3& cellLo() const { return cellLo_; }      //!< first cell index per axis
   const glm::ivec3& cellCount() const { return cellCount_; }
-  const std::vector<glm::vec2>& cellRanges() const { return cellRanges_; }
+  const CellRangeCodes& cellRanges() const { return cellRanges_; }
   //! Widens `ranges` (cells of 2^shift voxels, first cell `cellLo`, `cellCount` per axis, x
   //! fastest) by the value of every voxel this brick's samples touch, each in the cells of the
   //! samples that touch it. The brick's own macro cells are built this way, and so is the
@@ -94,7 +96,7 @@ class Brick {
   std::vector<float> shell_;  //!< Shipping::Yes: values of received_ outside stored_, in received_'s order
   Shipping shipping_ = Shipping::No;
   glm::ivec3 cellLo_{0}, cellCount_{0};
-  std::vector<glm::vec2> cellRanges_;  //!< (min, max) per macro cell, x fastest
+  CellRangeCodes cellRanges_;  //!< per macro cell, x fastest
 
   void buildCells();
 };
