@@ -1,5 +1,6 @@
 // AVX2 ray march: eight consecutive lattice samples at once. [Sections] shading of eight samples
-// | the march (empty-space test per group of eight, visible samples packed eight to a shading).
+// | the march (empty-space test per group of eight, visible samples packed eight to a shading,
+// the rays' last few samples packed across rays).
 // Each step is the scalar reference's operation (ray_march.cpp, sample_shader.h) in the same
 // order; nothing is fused (this file enables AVX2 only, not FMA, and the build compiles with
 // -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
@@ -96,9 +97,19 @@ struct Shaded8 {
   int contributing = 0;  //!< bit j: !(a[j] <= 0); colour is computed only when some bit is set
 };
 
-//! shadeSample for eight samples at points (px, py, pz) with voxels corner[j] at their floors.
-KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 px, __m256 py, __m256 pz, const Voxel* const* corner,
-                        Shaded8& out) {
+//! A direction per lane (the light, which is at the eye: each ray's own).
+struct Directions8 {
+  __m256 x, y, z;
+};
+
+KDSWAP_AVX2 inline Directions8 sameDirection(const glm::vec3& d) {
+  return Directions8{_mm256_set1_ps(d.x), _mm256_set1_ps(d.y), _mm256_set1_ps(d.z)};
+}
+
+//! shadeSample for eight samples at points (px, py, pz) with voxels corner[j] at their floors and
+//! lane j's light direction toLight lane j.
+KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m256 px, __m256 py, __m256 pz,
+                        const Voxel* const* corner, Shaded8& out) {
   const ShadingParameters& params = m.shading;
   const __m256 one = _mm256_set1_ps(1.0f);
   // p >= 0: truncation is floor.
@@ -142,9 +153,8 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 
   // Lambert term |g.l| / |g| (1 where the gradient is 0); dot products summed x + y + z, as glm::dot.
   const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, gradX), _mm256_mul_ps(gradY, gradY)),
                                     _mm256_mul_ps(gradZ, gradZ));
-  const __m256 dotL = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, _mm256_set1_ps(toLight.x)),
-                                                  _mm256_mul_ps(gradY, _mm256_set1_ps(toLight.y))),
-                                    _mm256_mul_ps(gradZ, _mm256_set1_ps(toLight.z)));
+  const __m256 dotL = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gradX, toLight.x), _mm256_mul_ps(gradY, toLight.y)),
+                                    _mm256_mul_ps(gradZ, toLight.z));
   const __m256 absDot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dotL);
   const __m256 lambert = _mm256_blendv_ps(one, _mm256_div_ps(absDot, _mm256_sqrt_ps(len2)),
                                           _mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ));
@@ -168,7 +178,8 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const glm::vec3& toLight, __m256 
 // its visible samples are packed, in order, behind those still waiting from earlier groups, and
 // each time eight are waiting they are shaded and composited together (FrontToBack::addEight, in
 // lanes). The groups are therefore exactly the scalar march's (every sample in a visible cell, in
-// lattice order, eight at a time), with no lane wasted except in a ray's last, partial eight.
+// lattice order, eight at a time). A ray's last, partial eight is handed back to the batch, which
+// packs the tails of several rays into one shading (TailPacker), so few lanes idle there either.
 // Where a group ends in empty space the ray jumps to the farthest exit of the empty cubes around
 // its invisible samples.
 
@@ -341,23 +352,110 @@ KDSWAP_AVX2 inline bool compositeEight(FrontToBack& result, const Shaded8& s, in
   return stops != 0;
 }
 
-//! Shades the first `n` samples of (x, y, z, offset) and composites them in order; true when the
-//! ray is done.
-KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegment& s, const Voxel* data, __m256 x,
-                                          __m256 y, __m256 z, __m256i offset, int n, FrontToBack& result,
-                                          std::uint64_t& samples) {
+//! Corner pointers of eight samples from their voxel offsets.
+KDSWAP_AVX2 inline void cornersOf(const Voxel* data, __m256i offset, const Voxel** corner) {
   alignas(32) int offsets[kLanes];
   _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), offset);
-  const Voxel* corner[kLanes];
   for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
-  Shaded8 shaded;
-  shade8(m, s.toLight, x, y, z, corner, shaded);
-  return compositeEight(result, shaded, n, m.stopTransmittance, samples);
 }
 
-KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchContext& m, const BrickConstants& bc,
-                                                                const RaySegment& s, std::uint64_t& samples) {
+//! Shades eight samples of (x, y, z, offset) and composites them in order; true when the ray is done.
+KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegment& s, const Voxel* data, __m256 x,
+                                          __m256 y, __m256 z, __m256i offset, FrontToBack& result,
+                                          std::uint64_t& samples) {
+  const Voxel* corner[kLanes];
+  cornersOf(data, offset, corner);
+  Shaded8 shaded;
+  shade8(m, sameDirection(s.toLight), x, y, z, corner, shaded);
+  return compositeEight(result, shaded, kLanes, m.stopTransmittance, samples);
+}
+
+//! Where a ray's march stopped: done (early termination, or no samples left), or with its last
+//! 1..7 visible samples still to shade and composite.
+struct RayTail {
   FrontToBack result;
+  __m256 x, y, z;
+  __m256i offset;
+  int size = 0;  //!< samples waiting in lanes 0 .. size - 1; 0 when the ray is done
+};
+
+//! The last few samples of several rays, packed into one eight before shading: a ray's final
+//! partial eight would otherwise leave lanes idle (a sixth of the shaded lanes on a 64-node CT
+//! head). Each ray's samples stay together and in order, and are composited as its last group, as
+//! the scalar march does; only the shading is shared, and it is per lane.
+class TailPacker {
+ public:
+  KDSWAP_AVX2 explicit TailPacker(const MarchContext& m, Rgba* colours, std::uint64_t& samples)
+      : m_(m), colours_(colours), samples_(samples) {}
+
+  //! Ray `ray`'s tail (size 1..7) with its light direction; its colour is written once shaded.
+  KDSWAP_AVX2 void add(std::size_t ray, const RayTail& tail, const glm::vec3& toLight) {
+    if (size_ + tail.size > kLanes) flush();
+    // Lane j of the rotated tail is its sample j - size; the lanes it fills are [size, size + n).
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i from = _mm256_and_si256(_mm256_sub_epi32(lane, _mm256_set1_epi32(size_)), _mm256_set1_epi32(7));
+    const __m256 mine = _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(size_ + tail.size), lane),
+                                                             _mm256_cmpgt_epi32(lane, _mm256_set1_epi32(size_ - 1))));
+    x_ = _mm256_blendv_ps(x_, _mm256_permutevar8x32_ps(tail.x, from), mine);
+    y_ = _mm256_blendv_ps(y_, _mm256_permutevar8x32_ps(tail.y, from), mine);
+    z_ = _mm256_blendv_ps(z_, _mm256_permutevar8x32_ps(tail.z, from), mine);
+    offset_ = _mm256_castps_si256(_mm256_blendv_ps(
+        _mm256_castsi256_ps(offset_), _mm256_castsi256_ps(_mm256_permutevar8x32_epi32(tail.offset, from)), mine));
+    light_.x = _mm256_blendv_ps(light_.x, _mm256_set1_ps(toLight.x), mine);
+    light_.y = _mm256_blendv_ps(light_.y, _mm256_set1_ps(toLight.y), mine);
+    light_.z = _mm256_blendv_ps(light_.z, _mm256_set1_ps(toLight.z), mine);
+    entries_[count_++] = Entry{ray, tail.result, size_, tail.size};
+    size_ += tail.size;
+  }
+
+  //! Shades what is packed and composites each ray's share onto its colour.
+  KDSWAP_AVX2 void flush() {
+    if (size_ == 0) return;
+    const Voxel* corner[kLanes];
+    cornersOf(m_.voxels.data, offset_, corner);  // unfilled lanes keep earlier voxels of the brick
+    Shaded8 shaded;
+    shade8(m_, light_, x_, y_, z_, corner, shaded);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    for (int e = 0; e < count_; ++e) {
+      Entry& entry = entries_[e];
+      // The ray's lanes [start, start + n) back to lanes [0, n).
+      const __m256i from = _mm256_and_si256(_mm256_add_epi32(lane, _mm256_set1_epi32(entry.start)), _mm256_set1_epi32(7));
+      Shaded8 own;
+      own.contributing = (shaded.contributing >> entry.start) & ((1 << entry.n) - 1);
+      _mm256_store_ps(own.a, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.a), from));
+      if (own.contributing != 0) {  // colour exists only where some lane is visible
+        _mm256_store_ps(own.r, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.r), from));
+        _mm256_store_ps(own.g, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.g), from));
+        _mm256_store_ps(own.b, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.b), from));
+      }
+      compositeEight(entry.result, own, entry.n, m_.stopTransmittance, samples_);
+      colours_[entry.ray] = entry.result.rgba();
+    }
+    size_ = 0, count_ = 0;
+  }
+
+ private:
+  struct Entry {
+    std::size_t ray;
+    FrontToBack result;
+    int start, n;
+  };
+  const MarchContext& m_;
+  Rgba* colours_;
+  std::uint64_t& samples_;
+  // Lanes not yet filled hold offset 0 (a voxel of the brick) and point 0 until first written.
+  __m256 x_ = _mm256_setzero_ps(), y_ = _mm256_setzero_ps(), z_ = _mm256_setzero_ps();
+  __m256i offset_ = _mm256_setzero_si256();
+  Directions8 light_{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
+  Entry entries_[kLanes];
+  int size_ = 0, count_ = 0;
+};
+
+KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchContext& m, const BrickConstants& bc,
+                                                                const RaySegment& s, std::uint64_t& samples,
+                                                                RayTail& tail) {
+  FrontToBack& result = tail.result;
+  tail.size = 0;
   const RayLanes r{_mm256_set1_ps(s.origin.x),    _mm256_set1_ps(s.origin.y),    _mm256_set1_ps(s.origin.z),
                    _mm256_set1_ps(s.direction.x), _mm256_set1_ps(s.direction.y), _mm256_set1_ps(s.direction.z),
                    _mm256_set1_ps(s.phase),       _mm256_set1_ps(s.step)};
@@ -377,7 +475,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchConte
     if (kNext <= s.last) groupAt(bc, r, m.reach, kNext, s.last, next);
 
     if (g.visible == 0xFF && waiting.size == 0) {  // dense data: eight in a row, nothing to pack
-      if (shadeAndComposite(m, s, bc.data, g.px, g.py, g.pz, g.offset, kLanes, result, samples)) return result.rgba();
+      if (shadeAndComposite(m, s, bc.data, g.px, g.py, g.pz, g.offset, result, samples)) return;
     } else if (g.visible != 0) {
       // Pack the visible lanes behind the waiting ones: lane j of the rotated pack takes the
       // group's (j - size) mod 8-th visible sample, so lanes below `size` keep the waiting samples
@@ -397,8 +495,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchConte
           _mm256_blendv_ps(_mm256_castsi256_ps(offset), _mm256_castsi256_ps(waiting.offset), keep));
       waiting.size += count;
       if (waiting.size >= kLanes) {
-        if (shadeAndComposite(m, s, bc.data, waiting.x, waiting.y, waiting.z, waiting.offset, kLanes, result, samples))
-          return result.rgba();
+        if (shadeAndComposite(m, s, bc.data, waiting.x, waiting.y, waiting.z, waiting.offset, result, samples)) return;
         waiting.size -= kLanes;
         waiting.x = x, waiting.y = y, waiting.z = z, waiting.offset = offset;  // the overflow, at the front
       }
@@ -406,18 +503,25 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline Rgba marchRay(const MarchConte
     k = kNext;
     g = next;
   }
-  // The last few: the lanes past `size` hold samples of the segment (never an address outside
-  // the brick), and only the first `size` are composited.
-  if (waiting.size > 0)
-    shadeAndComposite(m, s, bc.data, waiting.x, waiting.y, waiting.z, waiting.offset, waiting.size, result, samples);
-  return result.rgba();
+  // The last few (lanes 0 .. size - 1) go back to the batch, with the ray's state.
+  tail.x = waiting.x, tail.y = waiting.y, tail.z = waiting.z, tail.offset = waiting.offset;
+  tail.size = waiting.size;
 }
 
 KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
                            std::uint64_t& samples) {
   const BrickConstants constants = brickConstants(m);
   std::uint64_t taken = 0;  // a local: the callee's increments stay in a register
-  for (std::size_t i = 0; i < count; ++i) colours[i] = marchRay(m, constants, segments[i], taken);
+  TailPacker tails(m, colours, taken);
+  for (std::size_t i = 0; i < count; ++i) {
+    RayTail tail;
+    marchRay(m, constants, segments[i], taken, tail);
+    if (tail.size == 0)
+      colours[i] = tail.result.rgba();
+    else
+      tails.add(i, tail, segments[i].toLight);
+  }
+  tails.flush();
   samples += taken;
 }
 
