@@ -279,6 +279,13 @@ KDSWAP_AVX2 inline long farthestResume(const BrickConstants& bc, const RaySegmen
   return farthest - 1;  // one index early, for rounding, as the scalar rule
 }
 
+//! Lane j takes lane (j + by) mod 8 when used as a permutation: moves lanes down by `by` (up for
+//! a negative `by`), wrapping around. The march and the tail packer place samples with it.
+KDSWAP_AVX2 inline __m256i rotation(int by) {
+  return _mm256_and_si256(_mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(by)),
+                          _mm256_set1_epi32(7));
+}
+
 //! For each mask of eight lanes, the indices of its set lanes in order (lane j of the packed
 //! vector takes lane idx[j]); unused entries are 0. One byte per lane.
 struct PackTable {
@@ -393,7 +400,7 @@ class TailPacker {
     if (size_ + tail.size > kLanes) flush();
     // Lane j of the rotated tail is its sample j - size; the lanes it fills are [size, size + n).
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    const __m256i from = _mm256_and_si256(_mm256_sub_epi32(lane, _mm256_set1_epi32(size_)), _mm256_set1_epi32(7));
+    const __m256i from = rotation(-size_);
     const __m256 mine = _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(size_ + tail.size), lane),
                                                              _mm256_cmpgt_epi32(lane, _mm256_set1_epi32(size_ - 1))));
     x_ = _mm256_blendv_ps(x_, _mm256_permutevar8x32_ps(tail.x, from), mine);
@@ -415,11 +422,10 @@ class TailPacker {
     cornersOf(m_.voxels.data, offset_, corner);  // unfilled lanes keep earlier voxels of the brick
     Shaded8 shaded;
     shade8(m_, light_, x_, y_, z_, corner, shaded);
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     for (int e = 0; e < count_; ++e) {
       Entry& entry = entries_[e];
       // The ray's lanes [start, start + n) back to lanes [0, n).
-      const __m256i from = _mm256_and_si256(_mm256_add_epi32(lane, _mm256_set1_epi32(entry.start)), _mm256_set1_epi32(7));
+      const __m256i from = rotation(entry.start);
       Shaded8 own;
       own.contributing = (shaded.contributing >> entry.start) & ((1 << entry.n) - 1);
       _mm256_store_ps(own.a, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.a), from));
@@ -484,7 +490,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
       const __m256i packed = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(std::int64_t(kPackTable.indices[g.visible])));
       const __m256i size = _mm256_set1_epi32(waiting.size);
       const __m256i pick =
-          _mm256_permutevar8x32_epi32(packed, _mm256_and_si256(_mm256_sub_epi32(bc.lane, size), _mm256_set1_epi32(7)));
+          _mm256_permutevar8x32_epi32(packed, rotation(-waiting.size));
       const __m256 x = _mm256_permutevar8x32_ps(g.px, pick), y = _mm256_permutevar8x32_ps(g.py, pick),
                    z = _mm256_permutevar8x32_ps(g.pz, pick);
       const __m256i offset = _mm256_permutevar8x32_epi32(g.offset, pick);
