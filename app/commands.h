@@ -9,6 +9,7 @@ void addRenderCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addAnimateCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addExportCommand(CLI::App& app);
 
 }  // namespace kdswap
 

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   kdswap::addAnimateCommand(app);
   kdswap::addBenchCommand(app);
   kdswap::addInfoCommand(app);
+  kdswap::addExportCommand(app);
   app.footer("Run 'kdswap SUBCOMMAND --help' for the options of each subcommand.");
   try {
     app.parse(argc, argv);

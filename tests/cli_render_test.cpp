@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image/image_io.h"
+#include "core/volume/reader.h"
 
 #include "test_files.h"
 
@@ -115,4 +116,21 @@ TEST_CASE("kdswap render --spacing overrides the data's voxel spacing") {
   const int plain = litRows(""), stretched = litRows(" --spacing 1,1,3");
   CHECK(plain > 0);
   CHECK(stretched > plain);
+}
+
+TEST_CASE("kdswap export writes a data set that kdswap and other tools read back") {
+  const fs::path nrrd = workDir() / "phantom16.nrrd";
+  fs::remove(nrrd);
+  REQUIRE(runKdswap("export --dataset phantom:16 --quantise 8 --out " + nrrd.string()).code == 0);
+  const auto back = openVolumeFile(nrrd.string());
+  CHECK(back->info().type == "uint8");
+  CHECK(back->info().dims == glm::ivec3(16));
+  CHECK(back->info().maxValue > 0.0f);  // levels of the phantom's nominal range [0, 1]
+  CHECK(back->info().maxValue <= 255.0f);
+  // It renders like any file.
+  CHECK(runKdswap("render --volume " + nrrd.string() + " --size 32x32 --nodes 4 --verify --out " +
+                  (workDir() / "e.png").string()).code == 0);
+  const Run bad = runKdswap("export --dataset phantom:16 --out " + (workDir() / "x.png").string());
+  CHECK(bad.code == 2);
+  CHECK(lineCount(bad.err) == 1);
 }

@@ -1,0 +1,74 @@
+// `kdswap export`: write a built-in data set or a volume file as one .nrrd file, optionally
+// quantised to 8 or 16 bits, so other renderers (VTK, ParaView) can be run on the same voxels.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "core/bench/quantised_source.h"
+#include "core/util/error.h"
+#include "core/volume/datasets/dataset.h"
+#include "core/volume/reader.h"
+#include "core/volume/respaced_source.h"
+#include "core/volume/writers/nrrd_writer.h"
+
+namespace kdswap {
+namespace {
+
+struct ExportOptions {
+  std::string dataset, volume, spacing, type, out;
+  int quantise = 0;
+};
+
+void runExport(const ExportOptions& o) {
+  if (o.volume.empty() == o.dataset.empty()) throw Error("export: give either --dataset NAME[:SIZE] or --volume FILE");
+  if (o.quantise != 0 && o.quantise != 8 && o.quantise != 16) throw Error("--quantise must be 0, 8 or 16");
+  if (o.out.size() < 6 || o.out.compare(o.out.size() - 5, 5, ".nrrd") != 0)
+    throw Error("--out \"" + o.out + "\": expected a file name ending in .nrrd");
+  std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(o.dataset) : openVolumeFile(o.volume);
+  if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
+  if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
+  // Default type: the quantised width, else what the volume stores if that is 8 or 16 bits
+  // unsigned (levels of its own range: exact only for data spanning every level), else float32.
+  const std::string type = !o.type.empty() ? o.type
+                           : o.quantise == 8 ? "uint8"
+                           : o.quantise == 16 ? "uint16"
+                                              : "float32";
+  const NrrdSample sample = parseNrrdSample(type, "--type");
+  const VolumeInfo& info = source->info();
+  static const bool tty = isatty(2);
+  writeNrrd(o.out, *source, sample, [&](int done, int total) {
+    if (tty && (done % 16 == 0 || done == total)) std::fprintf(stderr, "\rexport: slice %d of %d", done, total);
+  });
+  if (tty) std::fprintf(stderr, "\n");
+  std::printf("wrote %s (%d x %d x %d %s, spacing %g %g %g, values %g .. %g)\n", o.out.c_str(), info.dims.x, info.dims.y,
+              info.dims.z, type.c_str(), double(info.spacing.x), double(info.spacing.y), double(info.spacing.z),
+              double(info.minValue), double(info.maxValue));
+}
+
+}  // namespace
+
+void addExportCommand(CLI::App& app) {
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* cmd = app.add_subcommand("export", "Write a data set or volume as a .nrrd file (to open it in other tools)");
+  cmd->add_option("--dataset", options->dataset, "Built-in data set NAME[:N|:WxHxD], e.g. phantom:256");
+  cmd->add_option("--volume", options->volume, "Volume file instead of a data set");
+  cmd->add_option("--spacing", options->spacing, "Voxel spacing SX,SY,SZ instead of the data's");
+  cmd->add_option("--quantise", options->quantise, "Round the data to 8 or 16 bits first (0: as stored)")
+      ->capture_default_str();
+  cmd->add_option("--type", options->type,
+                  "Sample type: float32, uint8 or uint16 (levels of the value range, kept as 'old min/max'); "
+                  "default: the --quantise width, else float32");
+  cmd->add_option("-o,--out", options->out, "Output file (.nrrd, raw data attached)")->required();
+  cmd->footer(
+      "Examples:\n"
+      "  kdswap export --dataset phantom:256 --quantise 8 --out phantom256.nrrd\n"
+      "  kdswap export --dataset turbulence:256 --quantise 16 --out turbulence256.nrrd");
+  cmd->callback([options] { runExport(*options); });
+}
+
+}  // namespace kdswap
