@@ -61,14 +61,8 @@ MarchComparison compareMarches(const Brick& brick, const View& view, const Trans
   return result;
 }
 
-}  // namespace
-
-TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with the same samples") {
-  const MarchFunction simd = avx2MarchFunction();
-  if (!simd) {
-    MESSAGE("this CPU or build has no AVX2: only the scalar march exists, nothing to compare");
-    return;
-  }
+//! Colours and sample counts of `simd` against the scalar march over data sets, bricks, views and settings.
+void checkAgainstScalar(MarchFunction simd) {
   struct Case {
     std::string data, transfer;
   };
@@ -108,6 +102,23 @@ TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with
         }
   }
   CHECK(totalSamples > 1000000);  // the comparison saw real work, not empty frames
+}
+
+}  // namespace
+
+TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with the same samples") {
+  // Both builds of it: for AVX2 alone, and for CPUs with AVX-512 VL (where this CPU has them).
+  std::vector<MarchFunction> simds;
+  for (const MarchFunction m : {avx2MarchFunction(), avx512vlMarchFunction()})
+    if (m) simds.push_back(m);
+  if (simds.empty()) {
+    MESSAGE("this CPU or build has no AVX2: only the scalar march exists, nothing to compare");
+    return;
+  }
+  for (const MarchFunction simd : simds) {
+    CAPTURE(marchName(simd));
+    checkAgainstScalar(simd);
+  }
 }
 
 TEST_CASE("compositing eight at a time equals sample-by-sample front-to-back over, and stops at the same sample") {

@@ -48,7 +48,7 @@ RayCastFigure castOnOneCore(const VolumeSource& source, const std::string& type,
       rates.push_back(t > 0 ? double(counters.samples) / t : 0.0);
     }
   });
-  return RayCastFigure{type, shaded, march == &marchScalar ? "scalar" : "avx2", median(rates), samples};
+  return RayCastFigure{type, shaded, marchName(march), median(rates), samples};
 }
 
 void fillSynthetic(Image& image, int seed) {
@@ -88,8 +88,11 @@ std::vector<RayCastFigure> measureRayCasting(const MicroOptions& o) {
   const std::string spec = "phantom:" + std::to_string(o.volumeSize);
   auto asFloat = openDataset(spec);
   QuantisedSource as8(openDataset(spec), 8), as16(openDataset(spec), 16);
-  // The march renders use (AVX2 where the CPU has it), and the scalar reference beside it.
+  // The march renders use, the plain AVX2 build of it where that is not the one, and the scalar
+  // reference beside them.
   std::vector<MarchFunction> marches{selectedMarchFunction()};
+  if (avx2MarchFunction() && marches[0] != avx2MarchFunction() && marches[0] != &marchScalar)
+    marches.push_back(avx2MarchFunction());
   if (marches[0] != &marchScalar) marches.push_back(&marchScalar);
   std::vector<RayCastFigure> out;
   for (MarchFunction march : marches)
@@ -231,7 +234,7 @@ std::string formatMicro(const std::vector<RayCastFigure>& rays, const CompositeF
                 o.volumeSize, o.imageSize, o.imageSize, o.repeats);
   out += buf;
   for (const RayCastFigure& r : rays) {
-    std::snprintf(buf, sizeof buf, "  %-8s %-9s %-7s %8.2f Msamples/s   (%.2f M samples per image)\n",
+    std::snprintf(buf, sizeof buf, "  %-8s %-9s %-13s %8.2f Msamples/s   (%.2f M samples per image)\n",
                   r.dataType.c_str(), r.shaded ? "shaded" : "unshaded", r.march.c_str(), r.samplesPerSecond * 1e-6,
                   r.samples * 1e-6);
     out += buf;

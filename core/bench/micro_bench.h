@@ -14,7 +14,7 @@ namespace kdswap {
 struct RayCastFigure {
   std::string dataType;  //!< "uint8", "uint16", "float32": the source data, before the float brick
   bool shaded = false;
-  std::string march;     //!< "avx2" or "scalar": which sample loop (ray_march.h) was measured
+  std::string march;     //!< marchName: which sample loop (ray_march.h) was measured
   double samplesPerSecond = 0;  //!< one thread (tbb::task_arena(1)), median of the repeats
   double samples = 0;           //!< per render
 };

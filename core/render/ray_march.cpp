@@ -46,10 +46,19 @@ void marchScalar(const MarchContext& m, const RaySegment* segments, std::size_t 
 
 MarchFunction selectedMarchFunction() {
   static const MarchFunction chosen = [] {
+    if (scalarRequested()) return &marchScalar;
+    const MarchFunction wide = avx2OnlyRequested() ? nullptr : avx512vlMarchFunction();
+    if (wide) return wide;
     const MarchFunction avx2 = avx2MarchFunction();
-    return (avx2 && !scalarRequested()) ? avx2 : &marchScalar;
+    return avx2 ? avx2 : &marchScalar;
   }();
   return chosen;
+}
+
+const char* marchName(MarchFunction march) {
+  if (march == &marchScalar) return "scalar";
+  if (march != nullptr && march == avx512vlMarchFunction()) return "avx2+avx512vl";
+  return "avx2";
 }
 
 }  // namespace kdswap

@@ -130,7 +130,13 @@ void marchScalar(const MarchContext& context, const RaySegment* segments, std::s
 //! The AVX2 march, or null when this build or CPU has no AVX2. It needs local voxel indices below
 //! 2^31 (checked by the caller: bricks larger than that use the scalar march).
 MarchFunction avx2MarchFunction();
-//! AVX2 when available, unless the environment sets KDSWAP_SIMD=scalar.
+//! The same AVX2 march compiled for CPUs with AVX-512 VL (ray_march_avx512vl.cpp), or null where
+//! the CPU or build lacks it. Same operations, same bits; only the code generation differs.
+MarchFunction avx512vlMarchFunction();
+//! The fastest march the CPU runs (AVX2 compiled for AVX-512 VL, then AVX2, then scalar), unless
+//! the environment sets KDSWAP_SIMD=scalar or KDSWAP_SIMD=avx2.
 MarchFunction selectedMarchFunction();
+//! "avx2+avx512vl", "avx2" or "scalar", for reports.
+const char* marchName(MarchFunction march);
 
 }  // namespace kdswap

@@ -20,7 +20,19 @@ namespace kdswap {
 namespace {
 
 // (Helpers are functions, not lambdas: a lambda does not inherit its enclosing function's target.)
+// ray_march_avx512vl.cpp compiles this file again for CPUs with AVX-512 VL: the same 256-bit
+// intrinsics, so the same operations and bits, but GCC may then use 32 vector registers (this
+// march spills with 16) and masked forms; no 512-bit vectors (prefer-vector-width=256), which
+// some Intel cores would pay for with a lower clock.
+#if defined(KDSWAP_MARCH_AVX512VL)
+#define KDSWAP_AVX2 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw,prefer-vector-width=256")))
+#define KDSWAP_MARCH_ENTRY avx512vlMarchFunction
+#define KDSWAP_MARCH_CPU cpuHasAvx512vl
+#else
 #define KDSWAP_AVX2 __attribute__((target("avx2")))
+#define KDSWAP_MARCH_ENTRY avx2MarchFunction
+#define KDSWAP_MARCH_CPU cpuHasAvx2
+#endif
 
 constexpr int kLanes = 8;
 
@@ -92,6 +104,20 @@ KDSWAP_AVX2 inline __m256 lit(__m256 c, __m256 light, __m256 highlight) {
   return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(_mm256_mul_ps(c, light), highlight));
 }
 
+//! Entries is[j] and is[j] + 1 of the specular table for eight lanes. Each lane's two adjacent
+//! floats are one 8-byte element, so two 4-element gathers replace two 8-element ones: a gather
+//! costs per element (AMD Zen 4 issues one load per element and waits for the last).
+KDSWAP_AVX2 inline void specularPairs(const float* table, __m256i is, __m256& s0, __m256& s1) {
+  const long long* base = reinterpret_cast<const long long*>(table);  // 4-byte aligned: scale 4
+  const __m256 low = _mm256_castsi256_ps(_mm256_i32gather_epi64(base, _mm256_castsi256_si128(is), 4));
+  const __m256 high = _mm256_castsi256_ps(_mm256_i32gather_epi64(base, _mm256_extracti128_si256(is, 1), 4));
+  // low = (e0 f0 e1 f1 | e2 f2 e3 f3), high the same for lanes 4..7 (e: entry, f: the next one).
+  const __m256 entries = _mm256_shuffle_ps(low, high, _MM_SHUFFLE(2, 0, 2, 0));  // e0 e1 e4 e5 | e2 e3 e6 e7
+  const __m256 nexts = _mm256_shuffle_ps(low, high, _MM_SHUFFLE(3, 1, 3, 1));
+  s0 = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(entries), _MM_SHUFFLE(3, 1, 2, 0)));
+  s1 = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(nexts), _MM_SHUFFLE(3, 1, 2, 0)));
+}
+
 struct Shaded8 {
   alignas(32) float r[kLanes], g[kLanes], b[kLanes], a[kLanes];
   int contributing = 0;  //!< bit j: !(a[j] <= 0); colour is computed only when some bit is set
@@ -161,8 +187,8 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m25
   // Specular table, linear between entries; std::min(x, 1.0f) is minps(1, x).
   const __m256 fs = _mm256_mul_ps(_mm256_min_ps(one, lambert), _mm256_set1_ps(float(kSpecularEntries)));
   const __m256i is = _mm256_min_epi32(_mm256_cvttps_epi32(fs), _mm256_set1_epi32(kSpecularEntries - 1));
-  const __m256 s0 = _mm256_i32gather_ps(params.specularTable, is, 4);
-  const __m256 s1 = _mm256_i32gather_ps(params.specularTable + 1, is, 4);
+  __m256 s0, s1;
+  specularPairs(params.specularTable, is, s0, s1);
   const __m256 highlight = _mm256_mul_ps(
       _mm256_set1_ps(params.specular),
       _mm256_add_ps(s0, _mm256_mul_ps(_mm256_sub_ps(fs, _mm256_cvtepi32_ps(is)), _mm256_sub_ps(s1, s0))));
@@ -533,14 +559,14 @@ KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, st
 
 }  // namespace
 
-MarchFunction avx2MarchFunction() { return cpuHasAvx2() ? &marchAvx2 : nullptr; }
+MarchFunction KDSWAP_MARCH_ENTRY() { return KDSWAP_MARCH_CPU() ? &marchAvx2 : nullptr; }
 
 }  // namespace kdswap
 
 #else
 
 namespace kdswap {
-MarchFunction avx2MarchFunction() { return nullptr; }
+MarchFunction KDSWAP_MARCH_ENTRY() { return nullptr; }
 }  // namespace kdswap
 
 #endif

@@ -18,11 +18,35 @@ bool cpuHasAvx2() {
 #endif
 }
 
-bool scalarRequested() {
-  static const bool requested = [] {
-    const char* simd = std::getenv("KDSWAP_SIMD");
-    return simd != nullptr && std::strcmp(simd, "scalar") == 0;
+bool cpuHasAvx512vl() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  // libgcc's answer includes the OS check (XCR0 saves the opmask and upper vector registers).
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
+           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512bw");
   }();
+  return has;
+#else
+  return false;
+#endif
+}
+
+namespace {
+bool simdRequested(const char* name) {
+  const char* simd = std::getenv("KDSWAP_SIMD");
+  return simd != nullptr && std::strcmp(simd, name) == 0;
+}
+}  // namespace
+
+bool scalarRequested() {
+  static const bool requested = simdRequested("scalar");
+  return requested;
+}
+
+bool avx2OnlyRequested() {
+  static const bool requested = simdRequested("avx2");
   return requested;
 }
 

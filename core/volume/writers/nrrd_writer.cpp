@@ -2,6 +2,7 @@
 #include "core/volume/writers/nrrd_writer.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
