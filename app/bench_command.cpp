@@ -34,6 +34,7 @@ struct BenchOptions {
   std::string dataset, volume, spacing, sizes = "64,128,256,512", nodes = "1,2,4,8,16,32,64,128,256,512";
   std::string composite = "binary-swap", tf, shading = "on", partition = "kd", outDir = "bench-out";
   std::string head = "../shared/data/headsq.nhdr", view = "30,15";
+  std::string vtkMs;
   std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1";
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
@@ -164,6 +165,7 @@ void run(const BenchOptions& o) {
   if (o.frames < 1 || o.frames > 1000) throw Error("--frames must be from 1 to 1000");
   if (o.quantise != 0 && o.quantise != 8 && o.quantise != 16) throw Error("--quantise must be 0, 8 or 16");
   if (int(o.micro) + int(o.paper) + int(o.targets) > 1) throw Error("give at most one of --micro, --paper, --targets");
+  if (!o.vtkMs.empty() && !o.targets) throw Error("--vtk-ms goes with --targets");
   gStop.store(false);
   auto previous = std::signal(SIGINT, onBenchInterrupt);
   struct Restore {
@@ -195,6 +197,12 @@ void run(const BenchOptions& o) {
     TargetOptions t;
     t.frames = o.frames;
     t.headPath = o.head;
+    if (!o.vtkMs.empty()) {
+      t.vtkMs = parseNumbers(o.vtkMs, ',', "--vtk-ms");
+      if (t.vtkMs.size() != 3 || !(t.vtkMs[0] > 0 && t.vtkMs[1] > 0 && t.vtkMs[2] > 0 && t.vtkMs[0] < 1e7 &&
+                                   t.vtkMs[1] < 1e7 && t.vtkMs[2] < 1e7))
+        throw Error("--vtk-ms \"" + o.vtkMs + "\": expected three times in ms, TURBULENCE,PHANTOM,CT_HEAD");
+    }
     std::printf("%s", formatSpeedTargets(runSpeedTargets(t, log, &gStop)).c_str());
   } else {
     runGrid(o);
@@ -250,6 +258,9 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_flag("--paper", o->paper, "Run the paper's sourced cells and compare");
   cmd->add_flag("--targets", o->targets, "Measure issue 6's speed targets");
   cmd->add_option("--head", o->head, "CT head for --targets")->capture_default_str();
+  cmd->add_option("--vtk-ms", o->vtkMs,
+                  "With --targets: VTK's times on this machine for turbulence, phantom and CT head "
+                  "(scripts/vtk_baseline.py), e.g. 250,110,230; adds 'half of VTK here' targets");
   cmd->callback([o] { run(*o); });
 }
 

@@ -127,6 +127,7 @@ def main():
     parser.add_argument("--pictures", action="store_true", help="also write each scene's last frame as PNG")
     args = parser.parse_args()
     os.makedirs(args.data_dir, exist_ok=True)
+    medians = []
     for i, (name, export_args, step) in enumerate(SCENES):
         path = os.path.join(args.data_dir, "scene%d.nrrd" % i)
         if not os.path.exists(path):
@@ -134,6 +135,8 @@ def main():
         png = os.path.join(args.data_dir, "scene%d.png" % i) if args.pictures else None
         ms = time_scene(read_nrrd(path), step, args.frames, args.threads, png)
         print("VTK %-52s %8.1f ms  (median of %d frames, %d threads)" % (name, ms, args.frames, args.threads), flush=True)
+        medians.append(ms)
+    print("compare: kdswap bench --targets --vtk-ms %s" % ",".join("%.0f" % m for m in medians))
 
 
 if __name__ == "__main__":

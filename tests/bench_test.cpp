@@ -14,6 +14,7 @@
 #include "core/bench/bench_report.h"
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
+#include "core/bench/speed_targets.h"
 #include "core/volume/respaced_source.h"
 #include "core/bench/speedup_chart.h"
 #include "core/bench/statistics.h"
@@ -181,4 +182,19 @@ TEST_CASE("the grid compares space and cost planes, with node speeds and a netwo
   CHECK(csv.find(",balance,comm_s,render_imbalance,bricks_per_node\n") != std::string::npos);
   CHECK(csv.find(",cost,") != std::string::npos);
   CHECK(formatCellDetails(r.cells).find("comm ms") != std::string::npos);
+}
+
+TEST_CASE("a target against VTK measured here keeps the measurement and halves VTK's time") {
+  const SpeedTarget fixed{"CT head ...", "kdswap bench ...", 60.0, 42.0, "ms", false, true, ""};
+  const SpeedTarget slower = halfOfVtkHere(fixed, "CT head, P=64", 110.0);
+  CHECK(slower.measured == 60.0);
+  CHECK(slower.limit == 55.0);
+  CHECK_FALSE(slower.met());  // 60 ms is more than half of 110
+  CHECK(slower.command == fixed.command);
+  CHECK(slower.note.find("110 ms") != std::string::npos);
+  CHECK(slower.note.find("vtk_baseline") != std::string::npos);
+  CHECK(halfOfVtkHere(fixed, "CT head, P=64", 130.0).met());
+  SpeedTarget notRun = fixed;
+  notRun.ran = false;
+  CHECK_FALSE(halfOfVtkHere(notRun, "CT head, P=64", 1000.0).met());  // nothing measured, nothing met
 }

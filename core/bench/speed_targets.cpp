@@ -1,6 +1,7 @@
 // Issue 6's speed targets: each measured with the bench grid (one cell) or the micro harness.
 #include "core/bench/speed_targets.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -86,6 +87,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   SpeedTarget t1{"phantom 256^3 uint8, 512x512, P=64, step 1, shading: wall per frame",
                  gridCommand(phantomData, p64, o.frames), a.wallSeconds * 1e3, 29.0, "ms", false, !interrupted, ""};
   out.push_back(t1);
+  const bool vtkHere = o.vtkMs.size() == 3;
+  if (vtkHere) out.push_back(halfOfVtkHere(t1, "phantom 256^3 uint8, P=64", o.vtkMs[1]));
   const double budget = 1.25 * kVoxelBytes * 256.0 * 256.0 * 256.0;
   out.push_back({"peak RSS with P=64, 256^3 (<= 1.25 x volume + gradients, 16 B/voxel)",
                  gridCommand(phantomData, p64, o.frames) + "   (peak_rss_bytes in bench.json)", double(rss) / 1e6,
@@ -110,6 +113,7 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     out.push_back({"turbulence 256^3, 512x512, P=64, step 1, shading: wall per frame",
                    gridCommand("--dataset turbulence:256", p64, o.frames), c.wallSeconds * 1e3, 88.0, "ms", false,
                    !interrupted, ""});
+    if (vtkHere) out.push_back(halfOfVtkHere(out.back(), "turbulence 256^3, P=64", o.vtkMs[0]));
   }
   if (stopped()) return out;
 
@@ -130,6 +134,7 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     t3.note = "not run: " + o.headPath + " not found (run from /work/main or pass --head FILE)";
   }
   out.push_back(t3);
+  if (vtkHere && t3.ran) out.push_back(halfOfVtkHere(t3, "CT head, P=64", o.vtkMs[2]));
   if (stopped()) return out;
 
   say("binary-swap alone, 1024x1024, P=8 ...");
@@ -182,6 +187,15 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                        ms(c.modelledSeconds)});
   }
   return out;
+}
+
+SpeedTarget halfOfVtkHere(const SpeedTarget& fixed, const std::string& scene, double vtkMs) {
+  SpeedTarget t = fixed;
+  t.name = scene + ": wall <= half of VTK measured on this machine";
+  t.limit = vtkMs / 2.0;
+  t.note = "VTK here " + std::to_string(int(std::lround(vtkMs))) +
+           " ms (scripts/vtk_baseline.py: same voxels, camera and settings)";
+  return t;
 }
 
 std::string formatSpeedTargets(const std::vector<SpeedTarget>& targets) {
