@@ -32,8 +32,8 @@ void runExport(const ExportOptions& o) {
   std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(o.dataset) : openVolumeFile(o.volume);
   if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
-  // Default type: the quantised width, else what the volume stores if that is 8 or 16 bits
-  // unsigned (levels of its own range: exact only for data spanning every level), else float32.
+  // Default type: the quantised width (exact: the values are those levels), else float32 (exact
+  // for every source, whatever it stores).
   const std::string type = !o.type.empty() ? o.type
                            : o.quantise == 8 ? "uint8"
                            : o.quantise == 16 ? "uint16"

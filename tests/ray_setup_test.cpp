@@ -3,6 +3,7 @@
 // clip and lattice indices match too is checked through render() = castRay in ray_march_test.cpp.)
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/camera/camera.h"
@@ -23,7 +24,7 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
     MESSAGE("no AVX2 here (or KDSWAP_SIMD=scalar): rays are set up one by one, nothing to compare");
     return;
   }
-  long lanes = 0, differing = 0, crossing = 0;
+  long lanes = 0, differing = 0, crossing = 0, windows = 0, wrongEnds = 0, ownedEnds = 0;
   for (const Projection projection : {Projection::Perspective, Projection::Orthographic})
     for (const float azimuth : {0.0f, 33.0f, 90.0f, 250.0f})
       for (const bool jitter : {false, true}) {
@@ -40,7 +41,15 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
         settings.stepVoxels = 0.5f;
         const VoxelRay::Scale scale(spacing, settings);
         const RaySetupConstants c{camera.basis(), scale.inverseSpacing, scale.inverseStep, scale.jitter,
-                                  glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), 61.0f};
+                                  glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), 61.0f,
+                                  glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), scale.step};
+        // RayCaster's exact ownership rule for lattice index k of a lane's ray.
+        const auto owned = [&](const RayLanes8& r, int j, long k) {
+          const float t = (float(k) + r.phase[j]) * scale.step;
+          const glm::vec3 p = glm::vec3(r.ox[j], r.oy[j], r.oz[j]) + glm::vec3(r.dx[j], r.dy[j], r.dz[j]) * t;
+          return p.x >= c.ownedLo.x && p.x < c.ownedHi.x && p.y >= c.ownedLo.y && p.y < c.ownedHi.y &&
+                 p.z >= c.ownedLo.z && p.z < c.ownedHi.z;
+        };
         RayLanes8 out;
         for (int y = 0; y < height; ++y)
           for (int x0 = 0; x0 < width; x0 += 8) {
@@ -58,6 +67,16 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
                              sameBits(out.iz[j], inverse.z) && sameBits(out.wx[j], ray.direction.x) &&
                              sameBits(out.wy[j], ray.direction.y) && sameBits(out.wz[j], ray.direction.z) &&
                              sameBits(out.phase[j], v.phase));
+              // The owned-run ends' first four candidates, where given, follow the same rule.
+              if ((out.windows >> j) & 1) {
+                ++windows;
+                const long kBegin = std::max(0L, long(out.firstIndex[j]) - 1), kEnd = long(out.lastIndex[j]) + 1;
+                for (int i = 0; i < 4; ++i) {
+                  wrongEnds += ((out.nearOwned[j] >> i) & 1) != int(owned(out, j, kBegin + i));
+                  wrongEnds += ((out.farOwned[j] >> i) & 1) != int(owned(out, j, kEnd - 3 + i));
+                  ownedEnds += ((out.nearOwned[j] >> i) & 1) + ((out.farOwned[j] >> i) & 1);
+                }
+              }
             }
           }
       }
@@ -65,4 +84,7 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
   CHECK(differing == 0);
   CHECK(crossing > lanes / 10);  // the clip box is in view: many rays cross it, not all
   CHECK(crossing < lanes);
+  CHECK(windows >= crossing);  // every crossing ray's ends are tested ahead
+  CHECK(wrongEnds == 0);
+  CHECK(ownedEnds > windows);  // and most runs start and end within them
 }

@@ -178,7 +178,7 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFromClip(const glm::vec3& o, 
                                                             float step, float phase, float inverseStep, float firstIndex,
                                                             float lastIndex, const glm::vec3& toLight,
                                                             RenderCounters& counters, long occludedFrom,
-                                                            RaySegment& segment) const {
+                                                            RaySegment& segment, int nearOwned, int farOwned) const {
   ++counters.rays;
   const glm::vec3 lo(brick_.owned().lo), hi(brick_.owned().hi);
   // One lattice index of slack on each side: the ownership test below is the exact rule.
@@ -187,15 +187,28 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFromClip(const glm::vec3& o, 
     ++counters.occluded;
     return false;
   }
-  const long kEnd = std::min(long(lastIndex) + 1, occludedFrom - 1);
+  const long kEndUnclipped = long(lastIndex) + 1;
+  const long kEnd = std::min(kEndUnclipped, occludedFrom - 1);
 
   // The owned samples form one run of lattice indices: each coordinate of p = o + d t is monotone
   // in k (rounding is monotone), so membership of the half-open box [lo, hi) is an interval. Its
   // ends are found with the exact per-sample rule (each lattice point belongs to exactly one
   // brick); the walk between them needs no test.
   const OwnedRun run{o, d, lo, hi, phase, step};
-  const long kFirst = run.first(kBegin, kEnd);
-  const long kLast = kFirst > kEnd ? kEnd : run.last(kFirst, kEnd);
+  // With the first four candidates at an end already tested (eight rays at once), the search
+  // starts past them: where it would have tested exactly those four, it finds the same index.
+  long kFirst;
+  if (nearOwned >= 0 && kEnd - kBegin >= 3)
+    kFirst = nearOwned != 0 ? kBegin + __builtin_ctz(unsigned(nearOwned)) : run.first(kBegin + 4, kEnd);
+  else
+    kFirst = run.first(kBegin, kEnd);
+  long kLast;
+  if (kFirst > kEnd)
+    kLast = kEnd;
+  else if (farOwned >= 0 && kEnd == kEndUnclipped && kEnd - 3 >= kFirst)
+    kLast = farOwned != 0 ? kEnd - 3 + (31 - __builtin_clz(unsigned(farOwned))) : run.last(kFirst, kEnd - 4);
+  else
+    kLast = run.last(kFirst, kEnd);
 
   if (kFirst > kLast) return false;  // no owned sample (the march would take none either)
   // The light is at the eye.
@@ -230,7 +243,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera, scale.step) : 0;
   const bool simdSetup = raySetup8Available();
   const RaySetupConstants setup{camera.basis(), scale.inverseSpacing, scale.inverseStep, scale.jitter, clip.lo, clip.hi,
-                                clip.hiMagnitude};
+                                clip.hiMagnitude, glm::vec3(brick_.owned().lo), glm::vec3(brick_.owned().hi), scale.step};
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).
@@ -275,10 +288,12 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
                 for (int bits = live & lanes.crosses; bits != 0; bits &= bits - 1) {
                   const int j = __builtin_ctz(bits);
                   const glm::vec3 o(lanes.ox[j], lanes.oy[j], lanes.oz[j]), d(lanes.dx[j], lanes.dy[j], lanes.dz[j]);
+                  const bool window = (lanes.windows >> j) & 1;
                   if (segmentFromClip(o, d, glm::vec3(lanes.ix[j], lanes.iy[j], lanes.iz[j]), scale.step,
                                       lanes.phase[j], scale.inverseStep, lanes.firstIndex[j], lanes.lastIndex[j],
                                       -glm::vec3(lanes.wx[j], lanes.wy[j], lanes.wz[j]), local, occludedFrom[j],
-                                      segments[pending]))
+                                      segments[pending], window ? lanes.nearOwned[j] : -1,
+                                      window ? lanes.farOwned[j] : -1))
                     queue(x0 + j, y);
                 }
                 continue;

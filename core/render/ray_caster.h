@@ -66,10 +66,13 @@ class RayCaster {
   bool segmentFor(const VoxelRay& ray, const glm::vec3& toLight, const ClipBox& clip, RenderCounters& counters,
                   long occludedFrom, RaySegment& segment) const;
   //! segmentFor after a clip that passed: `firstIndex` = floor(tNear / step - phase) and
-  //! `lastIndex` = ceil(tFar / step - phase), as floats. Shared with the eight-ray setup.
+  //! `lastIndex` = ceil(tFar / step - phase), as floats. Shared with the eight-ray setup, which may
+  //! pass the ownership of the search's first four candidates at each end (RayLanes8::nearOwned,
+  //! farOwned; -1: not known, search from scratch). The run found is the same either way.
   bool segmentFromClip(const glm::vec3& o, const glm::vec3& d, const glm::vec3& inverse, float step, float phase,
                        float inverseStep, float firstIndex, float lastIndex, const glm::vec3& toLight,
-                       RenderCounters& counters, long occludedFrom, RaySegment& segment) const;
+                       RenderCounters& counters, long occludedFrom, RaySegment& segment, int nearOwned = -1,
+                       int farOwned = -1) const;
 
   const Brick& brick_;
   const TransferTable& table_;

@@ -22,6 +22,11 @@ struct RaySetupConstants {
   bool jitter;
   glm::vec3 clipLo, clipHi;  //!< the box rays are clipped to, voxel coordinates
   float clipHiMagnitude;     //!< for the clip's rounding margin
+  //! The brick's owned box [ownedLo, ownedHi) and the sample step (voxels per unit of t): for the
+  //! ownership tests at both ends of each ray's lattice run (RayLanes8::nearOwned). An empty box
+  //! (the default) leaves them all false, and the caller then searches as it would without them.
+  glm::vec3 ownedLo{0.0f}, ownedHi{0.0f};
+  float step = 1.0f;
 };
 
 //! Eight rays, one per lane. The lattice index bounds are floor(tNear / step - phase) and
@@ -34,6 +39,13 @@ struct RayLanes8 {
   alignas(32) float wx[8], wy[8], wz[8];  //!< world direction (the light is at the eye)
   alignas(32) float phase[8], firstIndex[8], lastIndex[8];
   int crosses = 0;  //!< bit j: lane j's ray crosses the clip box
+  //! Where the owned run of lattice indices may start and end, tested for all lanes at once with
+  //! the exact rule of RayCaster's search (p = o + d ((k + phase) step) inside [ownedLo, ownedHi)):
+  //! bit i of nearOwned: index kBegin + i is owned, kBegin = max(0, firstIndex - 1); bit i of
+  //! farOwned: index kEnd - 3 + i is owned, kEnd = lastIndex + 1. Valid in lanes of `windows`
+  //! (indices within int range); the search's first four candidates at each end, precomputed.
+  alignas(32) int nearOwned[8], farOwned[8];
+  int windows = 0;
 };
 
 //! Whether setupRays8 runs here: AVX2 in this build and CPU, and KDSWAP_SIMD is not "scalar".

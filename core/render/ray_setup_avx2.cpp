@@ -47,6 +47,25 @@ KDSWAP_AVX2 inline void clipAxis(__m256 o, __m256 d, __m256 inverse, float lo, f
   tFar = _mm256_blendv_ps(tFar, far, lowerFar);
 }
 
+//! Bit i: lattice index k + i (i = 0..3) lies in the owned box, by RayCaster's per-sample rule:
+//! t = (float(k + i) + phase) * step, p = o + d t, lo <= p < hi on every axis.
+KDSWAP_AVX2 inline __m256i ownedWindow(__m256i k, __m256 phase, const RaySetupConstants& c, __m256 ox, __m256 oy,
+                                       __m256 oz, __m256 dx, __m256 dy, __m256 dz) {
+  __m256i bits = _mm256_setzero_si256();
+  for (int i = 0; i < 4; ++i) {
+    const __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(k, _mm256_set1_epi32(i))), phase),
+                                   splat(c.step));
+    const __m256 px = _mm256_add_ps(ox, _mm256_mul_ps(dx, t)), py = _mm256_add_ps(oy, _mm256_mul_ps(dy, t)),
+                 pz = _mm256_add_ps(oz, _mm256_mul_ps(dz, t));
+    const __m256 inX = _mm256_and_ps(_mm256_cmp_ps(px, splat(c.ownedLo.x), _CMP_GE_OQ), _mm256_cmp_ps(px, splat(c.ownedHi.x), _CMP_LT_OQ));
+    const __m256 inY = _mm256_and_ps(_mm256_cmp_ps(py, splat(c.ownedLo.y), _CMP_GE_OQ), _mm256_cmp_ps(py, splat(c.ownedHi.y), _CMP_LT_OQ));
+    const __m256 inZ = _mm256_and_ps(_mm256_cmp_ps(pz, splat(c.ownedLo.z), _CMP_GE_OQ), _mm256_cmp_ps(pz, splat(c.ownedHi.z), _CMP_LT_OQ));
+    const __m256i inside = _mm256_castps_si256(_mm256_and_ps(_mm256_and_ps(inX, inY), inZ));
+    bits = _mm256_or_si256(bits, _mm256_and_si256(inside, _mm256_set1_epi32(1 << i)));
+  }
+  return bits;
+}
+
 KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLanes8& out) {
   const Camera::Basis& b = c.camera;
   // Camera::ray: sx per lane, sy for the row.
@@ -90,8 +109,26 @@ KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLa
   const __m256 misses = _mm256_or_ps(rejected, _mm256_cmp_ps(tNear, tFar, _CMP_GT_OQ));  // tNear > tFar
   out.crosses = ~_mm256_movemask_ps(misses) & 0xFF;
   const __m256 inverseStep = splat(c.inverseStep);
-  _mm256_store_ps(out.firstIndex, _mm256_floor_ps(_mm256_sub_ps(_mm256_mul_ps(tNear, inverseStep), phase)));
-  _mm256_store_ps(out.lastIndex, _mm256_ceil_ps(_mm256_sub_ps(_mm256_mul_ps(tFar, inverseStep), phase)));
+  const __m256 firstIndex = _mm256_floor_ps(_mm256_sub_ps(_mm256_mul_ps(tNear, inverseStep), phase));
+  const __m256 lastIndex = _mm256_ceil_ps(_mm256_sub_ps(_mm256_mul_ps(tFar, inverseStep), phase));
+  _mm256_store_ps(out.firstIndex, firstIndex);
+  _mm256_store_ps(out.lastIndex, lastIndex);
+  // The ends of the owned run: the search's first four candidates at each end, for all lanes (in
+  // lanes whose indices, and the candidates' k + 3, fit an int as the search's own SSE test needs).
+  const __m256 limit = splat(float(1 << 30));
+  const __m256 inRange = _mm256_and_ps(
+      _mm256_andnot_ps(misses, _mm256_cmp_ps(firstIndex, splat(-2.0f), _CMP_GE_OQ)),
+      _mm256_and_ps(_mm256_cmp_ps(lastIndex, limit, _CMP_LT_OQ), _mm256_cmp_ps(firstIndex, limit, _CMP_LT_OQ)));
+  out.windows = _mm256_movemask_ps(inRange);
+  if (out.windows != 0) {
+    const __m256 safeFirst = _mm256_and_ps(firstIndex, inRange), safeLast = _mm256_and_ps(lastIndex, inRange);
+    const __m256i kBegin = _mm256_max_epi32(_mm256_sub_epi32(_mm256_cvttps_epi32(safeFirst), _mm256_set1_epi32(1)),
+                                            _mm256_setzero_si256());  // max(0, long(firstIndex) - 1)
+    const __m256i kEnd = _mm256_add_epi32(_mm256_cvttps_epi32(safeLast), _mm256_set1_epi32(1));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out.nearOwned), ownedWindow(kBegin, phase, c, ox, oy, oz, dx, dy, dz));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out.farOwned),
+                       ownedWindow(_mm256_sub_epi32(kEnd, _mm256_set1_epi32(3)), phase, c, ox, oy, oz, dx, dy, dz));
+  }
   _mm256_store_ps(out.ox, ox), _mm256_store_ps(out.oy, oy), _mm256_store_ps(out.oz, oz);
   _mm256_store_ps(out.dx, dx), _mm256_store_ps(out.dy, dy), _mm256_store_ps(out.dz, dz);
   _mm256_store_ps(out.ix, ix), _mm256_store_ps(out.iy, iy), _mm256_store_ps(out.iz, iz);
