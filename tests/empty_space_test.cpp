@@ -65,8 +65,10 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
     const TransferFunction tf = c.transfer == "threshold" ? threshold : loadTransferFunction(c.transfer);
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
     // The whole volume and a brick cut out of it (skipping works on the brick's own cells).
-    const Brick bricks[] = {wholeVolumeBrick(*volume),
-                            test::brickOf(*volume, VoxelBox{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)})};
+    // Both sizes of empty-space cells (small volumes get 2^3, large ones 4^3: Brick::cellShiftFor).
+    const VoxelBox cut{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)};
+    const Brick bricks[] = {wholeVolumeBrick(*volume, 1), test::brickOf(*volume, cut, 1), wholeVolumeBrick(*volume, 2),
+                            test::brickOf(*volume, cut, 2)};
     for (const Brick& brick : bricks)
       for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f}) {
         View view;
@@ -82,6 +84,7 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
         CAPTURE(c.transfer);
         CAPTURE(azimuth);
         CAPTURE(brick.owned().lo.x);
+        CAPTURE(brick.cellShift());
         // Samples are composited in groups of eight taken samples (FrontToBack::addEight), so
         // leaving out invisible ones regroups the rest: equal to rounding (seen: <= 3e-7), while a
         // visible sample left out would show far above that.
@@ -89,4 +92,18 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
         CHECK(a.counters.samples < b.counters.samples);
       }
   }
+}
+
+TEST_CASE("empty-space cells are 2^3 voxels for volumes up to 2^23 voxels and 4^3 above, on every brick") {
+  CHECK(Brick::cellShiftFor(glm::ivec3(128)) == 1);
+  CHECK(Brick::cellShiftFor(glm::ivec3(64, 64, 93)) == 1);
+  CHECK(Brick::cellShiftFor(glm::ivec3(256, 256, 128)) == 1);  // exactly 2^23
+  CHECK(Brick::cellShiftFor(glm::ivec3(256, 256, 129)) == 2);
+  CHECK(Brick::cellShiftFor(glm::ivec3(256)) == 2);
+  // A brick follows its volume's size, not its own, so all of a volume's bricks agree.
+  auto volume = openDataset("phantom:40");
+  const Brick brick = test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(8)});
+  CHECK(brick.cellShift() == 1);
+  CHECK(brick.cellCount() == glm::ivec3(4));  // owned [0, 8): samples' floors 0..7 in cells 0..3
+  CHECK(test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(8)}, 2).cellCount() == glm::ivec3(2));
 }

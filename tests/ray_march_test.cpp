@@ -74,8 +74,10 @@ void checkAgainstScalar(MarchFunction simd) {
     const TransferFunction tf = loadTransferFunction(c.transfer);
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
     // The whole volume and a brick cut out of it (offset voxel origin, cells and ghost layers).
-    const Brick bricks[] = {wholeVolumeBrick(*volume),
-                            test::brickOf(*volume, VoxelBox{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)})};
+    // Both sizes of empty-space cells (small volumes get 2^3, large ones 4^3: Brick::cellShiftFor).
+    const VoxelBox cut{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)};
+    const Brick bricks[] = {wholeVolumeBrick(*volume, 1), test::brickOf(*volume, cut, 1), wholeVolumeBrick(*volume, 2),
+                            test::brickOf(*volume, cut, 2)};
     for (const Brick& brick : bricks)
       for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f})
         for (int variant = 0; variant < 4; ++variant) {
@@ -94,6 +96,7 @@ void checkAgainstScalar(MarchFunction simd) {
           CAPTURE(azimuth);
           CAPTURE(variant);
           CAPTURE(brick.owned().lo.x);
+          CAPTURE(brick.cellShift());
           CHECK(r.differingPixels == 0);
           CHECK(r.differingCounts == 0);
           CHECK(r.batchDiffering == 0);

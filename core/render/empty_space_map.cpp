@@ -62,8 +62,9 @@ EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, flo
         }
   anyVisible_ = lo.x <= hi.x;
   if (!anyVisible_) return;
-  visibleLo_ = glm::max(glm::vec3((lo + c0) << Brick::kCellShift), glm::vec3(brick.owned().lo));
-  visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << Brick::kCellShift), glm::vec3(brick.owned().hi));
+  const int shift = brick.cellShift();
+  visibleLo_ = glm::max(glm::vec3((lo + c0) << shift), glm::vec3(brick.owned().lo));
+  visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << shift), glm::vec3(brick.owned().hi));
   reach_ = chessboardDistance(std::move(invisible), n);
   reach_.resize(reach_.size() + kReachPadding, 0);
 }

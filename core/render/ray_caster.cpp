@@ -118,6 +118,7 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   march_.storedLo = brick.stored().lo;
   march_.reach = emptySpace_->reachData();
   march_.cellLo = brick.cellLo();
+  march_.cellShift = brick.cellShift();
   march_.cellCount = emptySpace_->cellCount();
   march_.lo = glm::vec3(brick.owned().lo), march_.hi = glm::vec3(brick.owned().hi);
   march_.stopTransmittance = std::max(0.0f, 1.0f - settings.earlyTermination);

@@ -15,7 +15,7 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
   for (long k = s.first; k <= s.last; ++k) {
     const glm::vec3 p = s.point(k);
     const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));  // p >= 0: truncation is floor
-    const glm::ivec3 c = (floor >> Brick::kCellShift) - m.cellLo;
+    const glm::ivec3 c = (floor >> m.cellShift) - m.cellLo;
     const std::size_t cell = m.cellIndex(c);
     if (const int reach = m.reach[cell]) {
       if (cell == lastJumpedCell) continue;  // landed just short of the exit: step on

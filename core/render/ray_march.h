@@ -27,6 +27,7 @@ struct MarchContext {
   glm::ivec3 storedLo{0};           //!< first kept voxel: voxels.data[local index] is the voxel
   const std::uint8_t* reach = nullptr;  //!< EmptySpaceMap::reachData(), padded for 4-byte gathers
   glm::ivec3 cellLo{0}, cellCount{0};
+  int cellShift = 2;                //!< Brick::cellShift(): cells of 2^cellShift voxels a side
   glm::vec3 lo{0.0f}, hi{0.0f};     //!< owned box [lo, hi), voxel coordinates
   //! Early ray termination: the ray stops once its transmittance (1 - opacity) is at most this,
   //! 1 - the termination opacity (0 with termination off: only an opaque sample ends the ray).
@@ -51,8 +52,8 @@ struct RaySegment {
   //! step on from, just before the ray leaves the invisible cube of cells around c (a cube is
   //! convex, so every sample before that is invisible). One index early, for rounding.
   long resumeAfterEmpty(const MarchContext& m, const glm::ivec3& c, int n) const {
-    const glm::vec3 cLo = glm::max(glm::vec3((c + m.cellLo - (n - 1)) << Brick::kCellShift), m.lo);
-    const glm::vec3 cHi = glm::min(glm::vec3((c + m.cellLo + n) << Brick::kCellShift), m.hi);
+    const glm::vec3 cLo = glm::max(glm::vec3((c + m.cellLo - (n - 1)) << m.cellShift), m.lo);
+    const glm::vec3 cHi = glm::min(glm::vec3((c + m.cellLo + n) << m.cellShift), m.hi);
     float tExit = std::numeric_limits<float>::max();
     for (int a = 0; a < 3; ++a)
       if (direction[a] != 0.0f)

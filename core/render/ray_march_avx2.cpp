@@ -220,6 +220,7 @@ struct Group {
 struct BrickConstants {
   __m256i lane, cellLoX, cellLoY, cellLoZ, countX, countY, loX, loY, loZ, sy, sz;
   __m256 boxLoX, boxLoY, boxLoZ, boxHiX, boxHiY, boxHiZ;  //!< owned box, for the empty cubes' faces
+  __m128i cellShift;  //!< shift count: voxel index -> cell index
   const Voxel* data;
 };
 
@@ -233,6 +234,7 @@ KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
   c.sy = _mm256_set1_epi32(int(m.voxels.sy)), c.sz = _mm256_set1_epi32(int(m.voxels.sz));
   c.boxLoX = _mm256_set1_ps(m.lo.x), c.boxLoY = _mm256_set1_ps(m.lo.y), c.boxLoZ = _mm256_set1_ps(m.lo.z);
   c.boxHiX = _mm256_set1_ps(m.hi.x), c.boxHiY = _mm256_set1_ps(m.hi.y), c.boxHiZ = _mm256_set1_ps(m.hi.z);
+  c.cellShift = _mm_cvtsi32_si128(m.cellShift);
   c.data = m.voxels.data;
   return c;
 }
@@ -252,9 +254,9 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConsta
   g.px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), g.py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
   g.pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
   const __m256i ix = _mm256_cvttps_epi32(g.px), iy = _mm256_cvttps_epi32(g.py), iz = _mm256_cvttps_epi32(g.pz);
-  g.cx = _mm256_sub_epi32(_mm256_srai_epi32(ix, Brick::kCellShift), bc.cellLoX);
-  g.cy = _mm256_sub_epi32(_mm256_srai_epi32(iy, Brick::kCellShift), bc.cellLoY);
-  g.cz = _mm256_sub_epi32(_mm256_srai_epi32(iz, Brick::kCellShift), bc.cellLoZ);
+  g.cx = _mm256_sub_epi32(_mm256_sra_epi32(ix, bc.cellShift), bc.cellLoX);
+  g.cy = _mm256_sub_epi32(_mm256_sra_epi32(iy, bc.cellShift), bc.cellLoY);
+  g.cz = _mm256_sub_epi32(_mm256_sra_epi32(iz, bc.cellShift), bc.cellLoZ);
   const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane);
   const __m256i cell = _mm256_and_si256(  // lanes past the segment look at cell 0
       _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(g.cz, bc.countY), g.cy), bc.countX), g.cx),
@@ -271,14 +273,14 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConsta
 //! Where t leaves, along one axis, the empty cubes of cells (absolute) `cell` with reach `reach`:
 //! the far face in the ray's direction (clamped to the owned box), +infinity when the ray is
 //! parallel to the axis. As RaySegment::resumeAfterEmpty.
-KDSWAP_AVX2 inline __m256 cubeExit(__m256i cell, __m256i reach, __m256 boxLo, __m256 boxHi, float origin, float direction,
-                                   float inverse) {
+KDSWAP_AVX2 inline __m256 cubeExit(__m256i cell, __m256i reach, __m256 boxLo, __m256 boxHi, __m128i shift, float origin,
+                                   float direction, float inverse) {
   if (direction == 0.0f) return _mm256_set1_ps(std::numeric_limits<float>::infinity());
   const __m256 face =
       direction > 0.0f
-          ? _mm256_min_ps(_mm256_cvtepi32_ps(_mm256_slli_epi32(_mm256_add_epi32(cell, reach), Brick::kCellShift)), boxHi)
-          : _mm256_max_ps(_mm256_cvtepi32_ps(_mm256_slli_epi32(
-                              _mm256_sub_epi32(cell, _mm256_sub_epi32(reach, _mm256_set1_epi32(1))), Brick::kCellShift)),
+          ? _mm256_min_ps(_mm256_cvtepi32_ps(_mm256_sll_epi32(_mm256_add_epi32(cell, reach), shift)), boxHi)
+          : _mm256_max_ps(_mm256_cvtepi32_ps(_mm256_sll_epi32(
+                              _mm256_sub_epi32(cell, _mm256_sub_epi32(reach, _mm256_set1_epi32(1))), shift)),
                           boxLo);
   return _mm256_mul_ps(_mm256_sub_ps(face, _mm256_set1_ps(origin)), _mm256_set1_ps(inverse));
 }
@@ -287,12 +289,12 @@ KDSWAP_AVX2 inline __m256 cubeExit(__m256i cell, __m256i reach, __m256 boxLo, __
 //! largest lattice index the ray may step on from, i.e. every sample before it and after the
 //! group's first is invisible or was in the group. Computed for all lanes at once; the farthest wins.
 KDSWAP_AVX2 inline long farthestResume(const BrickConstants& bc, const RaySegment& s, const Group& g, int invisible) {
-  const __m256 exitX = cubeExit(_mm256_add_epi32(g.cx, bc.cellLoX), g.reach, bc.boxLoX, bc.boxHiX, s.origin.x,
-                                s.direction.x, s.inverseDirection.x);
-  const __m256 exitY = cubeExit(_mm256_add_epi32(g.cy, bc.cellLoY), g.reach, bc.boxLoY, bc.boxHiY, s.origin.y,
-                                s.direction.y, s.inverseDirection.y);
-  const __m256 exitZ = cubeExit(_mm256_add_epi32(g.cz, bc.cellLoZ), g.reach, bc.boxLoZ, bc.boxHiZ, s.origin.z,
-                                s.direction.z, s.inverseDirection.z);
+  const __m256 exitX = cubeExit(_mm256_add_epi32(g.cx, bc.cellLoX), g.reach, bc.boxLoX, bc.boxHiX, bc.cellShift,
+                                s.origin.x, s.direction.x, s.inverseDirection.x);
+  const __m256 exitY = cubeExit(_mm256_add_epi32(g.cy, bc.cellLoY), g.reach, bc.boxLoY, bc.boxHiY, bc.cellShift,
+                                s.origin.y, s.direction.y, s.inverseDirection.y);
+  const __m256 exitZ = cubeExit(_mm256_add_epi32(g.cz, bc.cellLoZ), g.reach, bc.boxLoZ, bc.boxHiZ, bc.cellShift,
+                                s.origin.z, s.direction.z, s.inverseDirection.z);
   const __m256 tExit = _mm256_min_ps(_mm256_min_ps(exitX, exitY), exitZ);
   // floor(tExit / step - phase), capped past the segment's end so the conversion cannot overflow.
   __m256 index = _mm256_floor_ps(

@@ -23,6 +23,10 @@ VoxelBox Brick::keptBoxFor(const VoxelBox& owned) {
   return VoxelBox{owned.lo, owned.hi + 1};
 }
 
+int Brick::cellShiftFor(const glm::ivec3& dims) {
+  return std::int64_t(dims.x) * dims.y * dims.z <= kFineCellVoxels ? 1 : 2;
+}
+
 VoxelBox Brick::ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims) {
   if (owned.empty()) return VoxelBox{};
   VoxelBox v = owned;
@@ -44,13 +48,15 @@ std::vector<float> Brick::storedValues() const {
 }
 
 Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw,
-             Shipping shipping)
+             Shipping shipping, int cellShift)
     : owned_(owned),
       stored_(keptBoxFor(owned)),
       received_(storedBoxFor(owned, dims)),
       dims_(dims),
       spacing_(spacing),
-      shipping_(shipping) {
+      shipping_(shipping),
+      cellShift_(cellShift != 0 ? cellShift : cellShiftFor(dims)) {
+  KDSWAP_CHECK(cellShift_ >= 1 && cellShift_ <= 4);
   if (owned_.empty()) return;
   KDSWAP_CHECK_EQ(raw.size(), std::size_t(received_.count()));
   const glm::ivec3 r = received_.size();
@@ -89,12 +95,12 @@ Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spa
 
 void Brick::buildCells() {
   // Cells over the owned samples: floor(p) ranges over [owned.lo, owned.hi - 1].
-  cellLo_ = owned_.lo >> kCellShift;
-  const glm::ivec3 cellHi = ((owned_.hi - 1) >> kCellShift) + 1;
+  cellLo_ = owned_.lo >> cellShift_;
+  const glm::ivec3 cellHi = ((owned_.hi - 1) >> cellShift_) + 1;
   cellCount_ = cellHi - cellLo_;
   std::vector<glm::vec2> ranges(std::size_t(cellCount_.x) * cellCount_.y * cellCount_.z,
                                 glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
-  widenCellRanges(kCellShift, cellLo_, cellCount_, ranges);
+  widenCellRanges(cellShift_, cellLo_, cellCount_, ranges);
   cellRanges_ = CellRangeCodes(ranges);
 }
 
