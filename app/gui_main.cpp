@@ -5,9 +5,11 @@
 #include <CLI/CLI.hpp>
 
 #include "core/util/error.h"
+#include "core/util/memory.h"
 #include "ui/gui_app.h"
 
 int main(int argc, char** argv) {
+  kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
   kdswap::GuiOptions o;
   std::string windowSize = "1600x1000";
   CLI::App app{

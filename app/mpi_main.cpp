@@ -18,6 +18,7 @@
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
 #include "core/util/error.h"
+#include "core/util/memory.h"
 
 namespace kdswap {
 namespace {
@@ -117,6 +118,7 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
 }  // namespace kdswap
 
 int main(int argc, char** argv) {
+  kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
   std::unique_ptr<kdswap::MpiSession> session;
   try {
     session = std::make_unique<kdswap::MpiSession>(argc, argv);
