@@ -199,8 +199,8 @@ void run(const BenchOptions& o) {
     t.headPath = o.head;
     if (!o.vtkMs.empty()) {
       t.vtkMs = parseNumbers(o.vtkMs, ',', "--vtk-ms");
-      if (t.vtkMs.size() != 3 || !(t.vtkMs[0] > 0 && t.vtkMs[1] > 0 && t.vtkMs[2] > 0 && t.vtkMs[0] < 1e7 &&
-                                   t.vtkMs[1] < 1e7 && t.vtkMs[2] < 1e7))
+      if (t.vtkMs.size() != 3 ||
+          !std::all_of(t.vtkMs.begin(), t.vtkMs.end(), [](double ms) { return ms > 0 && ms < 1e7; }))
         throw Error("--vtk-ms \"" + o.vtkMs + "\": expected three times in ms, TURBULENCE,PHANTOM,CT_HEAD");
     }
     std::printf("%s", formatSpeedTargets(runSpeedTargets(t, log, &gStop)).c_str());

@@ -47,6 +47,11 @@ KDSWAP_AVX2 inline void clipAxis(__m256 o, __m256 d, __m256 inverse, float lo, f
   tFar = _mm256_blendv_ps(tFar, far, lowerFar);
 }
 
+//! lo <= v < hi, per lane.
+KDSWAP_AVX2 inline __m256 within(__m256 v, float lo, float hi) {
+  return _mm256_and_ps(_mm256_cmp_ps(v, splat(lo), _CMP_GE_OQ), _mm256_cmp_ps(v, splat(hi), _CMP_LT_OQ));
+}
+
 //! Bit i: lattice index k + i (i = 0..3) lies in the owned box, by RayCaster's per-sample rule:
 //! t = (float(k + i) + phase) * step, p = o + d t, lo <= p < hi on every axis.
 KDSWAP_AVX2 inline __m256i ownedWindow(__m256i k, __m256 phase, const RaySetupConstants& c, __m256 ox, __m256 oy,
@@ -57,10 +62,9 @@ KDSWAP_AVX2 inline __m256i ownedWindow(__m256i k, __m256 phase, const RaySetupCo
                                    splat(c.step));
     const __m256 px = _mm256_add_ps(ox, _mm256_mul_ps(dx, t)), py = _mm256_add_ps(oy, _mm256_mul_ps(dy, t)),
                  pz = _mm256_add_ps(oz, _mm256_mul_ps(dz, t));
-    const __m256 inX = _mm256_and_ps(_mm256_cmp_ps(px, splat(c.ownedLo.x), _CMP_GE_OQ), _mm256_cmp_ps(px, splat(c.ownedHi.x), _CMP_LT_OQ));
-    const __m256 inY = _mm256_and_ps(_mm256_cmp_ps(py, splat(c.ownedLo.y), _CMP_GE_OQ), _mm256_cmp_ps(py, splat(c.ownedHi.y), _CMP_LT_OQ));
-    const __m256 inZ = _mm256_and_ps(_mm256_cmp_ps(pz, splat(c.ownedLo.z), _CMP_GE_OQ), _mm256_cmp_ps(pz, splat(c.ownedHi.z), _CMP_LT_OQ));
-    const __m256i inside = _mm256_castps_si256(_mm256_and_ps(_mm256_and_ps(inX, inY), inZ));
+    const __m256i inside = _mm256_castps_si256(_mm256_and_ps(
+        _mm256_and_ps(within(px, c.ownedLo.x, c.ownedHi.x), within(py, c.ownedLo.y, c.ownedHi.y)),
+        within(pz, c.ownedLo.z, c.ownedHi.z)));
     bits = _mm256_or_si256(bits, _mm256_and_si256(inside, _mm256_set1_epi32(1 << i)));
   }
   return bits;
