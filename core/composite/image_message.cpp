@@ -61,9 +61,8 @@ Image mergeImages(Image mine, Image theirs, bool theirsInFront, std::int64_t& pi
     pixels += compositeInto(theirs, mine, !theirsInFront);
     return theirs;
   }
-  Image merged = mine.extendedTo(both);
-  pixels += compositeInto(merged, theirs, theirsInFront);
-  return merged;
+  pixels += theirs.rect().area();
+  return theirsInFront ? overOf(theirs.view(), mine.view()) : overOf(mine.view(), theirs.view());
 }
 
 Image trimToContent(Image image) {

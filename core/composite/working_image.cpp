@@ -49,9 +49,9 @@ void WorkingImage::merge(const ImageView& theirs, bool theirsInFront, std::int64
     pixels += compositeInto(writableFor(theirs.rect), theirs, theirsInFront);
     return;
   }
-  Image merged = image_->extendedTo(both);
-  pixels += compositeInto(merged, theirs, theirsInFront);
-  *this = WorkingImage(std::move(merged));
+  const ImageView mine = image_->view();
+  pixels += theirs.rect.area();
+  *this = WorkingImage(theirsInFront ? overOf(theirs, mine) : overOf(mine, theirs));
 }
 
 void WorkingImage::composeLayers(const Rect& target, const std::vector<ImageView>& layers, int self,

@@ -100,6 +100,32 @@ std::int64_t compositeInto(Image& dst, const ImageView& other, bool otherInFront
   return r.area();
 }
 
+Image overOf(const ImageView& front, const ImageView& back) {
+  const Rect both = front.rect.unite(back.rect);
+  std::vector<float> values = pixel_pool::take(std::size_t(both.area()) * 4);
+  for (int y = both.y; y < both.bottom(); ++y) {
+    // The row is built in place at the end of the buffer: zeroed, `back` copied in, `front`
+    // blended on. A row is at most a few tens of KiB, so only the finished row leaves the cache.
+    const std::size_t start = values.size();
+    values.resize(start + std::size_t(both.w) * 4, 0.0f);
+    Rgba* row = reinterpret_cast<Rgba*>(values.data() + start) - both.x;  // indexed by frame x
+    const bool inBack = y >= back.rect.y && y < back.rect.bottom();
+    const bool inFront = y >= front.rect.y && y < front.rect.bottom();
+    if (inBack) std::memcpy(row + back.rect.x, back.row(y), sizeof(Rgba) * std::size_t(back.rect.w));
+    if (!inFront) continue;
+    const Rgba* f = front.row(y) - front.rect.x;
+    // Over the part `back` covers, blend; elsewhere over a transparent pixel is a copy.
+    const int lo = inBack ? std::max(front.rect.x, back.rect.x) : front.rect.x;
+    const int hi = inBack ? std::min(front.rect.right(), back.rect.right()) : front.rect.x;
+    const int copyEnd = lo < hi ? lo : front.rect.right();
+    std::memcpy(row + front.rect.x, f + front.rect.x, sizeof(Rgba) * std::size_t(copyEnd - front.rect.x));
+    if (lo >= hi) continue;
+    for (int x = lo; x < hi; ++x) row[x] = over(f[x], row[x]);
+    std::memcpy(row + hi, f + hi, sizeof(Rgba) * std::size_t(front.rect.right() - hi));
+  }
+  return Image(both, std::move(values));
+}
+
 Image assemble(const Rect& frame, const std::vector<Image>& pieces) {
   Image out(frame);
   for (const Image& piece : pieces) {

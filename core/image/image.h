@@ -82,6 +82,11 @@ inline std::int64_t compositeInto(Image& dst, const Image& other, bool otherInFr
   return compositeInto(dst, other.view(), otherInFront);
 }
 
+//! `front` over `back` on the union of their rects (pixels only one of them covers are copied,
+//! as over a transparent pixel). Equal, bit for bit, to extending one to the union and compositing
+//! the other into it, but each pixel of the result is written once: no clearing, no copy first.
+Image overOf(const ImageView& front, const ImageView& back);
+
 //! Full-frame image assembled from pieces (tiles or partial images); pixels outside every piece
 //! are transparent. Pieces are pasted, not composited.
 Image assemble(const Rect& frame, const std::vector<Image>& pieces);
