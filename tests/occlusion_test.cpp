@@ -12,6 +12,7 @@
 #include "core/render/ray_caster.h"
 #include "core/render/reference_render.h"
 #include "core/render/trilinear.h"
+#include "core/render/voxel_ray.h"
 #include "core/transfer/presets.h"
 #include "core/volume/datasets/dataset.h"
 #include "test_support.h"
@@ -111,7 +112,8 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get
       const TransferTable table(loadTransferFunction("grayscale"), step);
       const OcclusionGrid grid(CellRangeGrid::fromBricks(dims, {&whole}), table, map.x, map.y, 0.95f);
       REQUIRE(grid.active());
-      // Bundles of nearly parallel rays (as a row of pixels), axis-parallel ones and rays that miss.
+      // Bundles of nearly parallel rays (as a row of pixels), axis-parallel ones, rays that miss and
+      // rays from inside.
       std::mt19937 rng(11);
       std::uniform_real_distribution<float> u(0.0f, 1.0f);
       constexpr int kRays = 203;  // not a multiple of eight: the tail runs too
@@ -122,7 +124,8 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get
       for (int bundle = 0; bundle < 24; ++bundle) {
         glm::vec3 axis = glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
         if (bundle % 6 == 0) axis = glm::vec3(bundle % 12 == 0 ? 1.0f : 0.0f, 0.0f, bundle % 12 == 0 ? 0.0f : -1.0f);
-        const glm::vec3 eye = centre - axis * float(dims.x + dims.y + dims.z);
+        // Every sixth bundle looks out from inside the volume (the walk starts where the ray does).
+        const glm::vec3 eye = centre - axis * (bundle % 6 == 3 ? 3.0f : float(dims.x + dims.y + dims.z));
         origins.clear(), directions.clear(), phases.clear();
         for (int i = 0; i < kRays; ++i) {
           const glm::vec3 target = centre + (glm::vec3(u(rng), u(rng), u(rng)) - 0.5f) * glm::vec3(dims) * 1.3f;
@@ -193,17 +196,23 @@ TEST_CASE("occlusion map: stopping each single-node ray at its map index changes
       const OcclusionMap occlusion(grid, camera, worldHi, info.spacing, settings);
       const RayCaster caster(whole, table, settings, range);
       RenderCounters plain, stopped;
-      int mismatches = 0;
+      int mismatches = 0, indexMismatches = 0;
       for (int y = 0; y < camera.height(); ++y)
         for (int x = 0; x < camera.width(); ++x) {
           const Ray ray = camera.ray(x, y);
           const Rgba a = caster.castRay(ray, plain);
           const Rgba b = caster.castRay(ray, stopped, occlusion.occludedFrom(x, y));
           mismatches += !(a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a);
+          // The map sets its rays up eight at a time where it can: the index of each is the one
+          // the pixel's own voxel ray gets.
+          const VoxelRay voxelRay(ray, info.spacing, settings);
+          const long single = grid.occludedFrom(voxelRay.origin, voxelRay.direction, voxelRay.step, voxelRay.phase);
+          indexMismatches += occlusion.occludedFrom(x, y) != single;
         }
       CAPTURE(data);
       CAPTURE(azimuth);
       CHECK(mismatches == 0);
+      CHECK(indexMismatches == 0);
       CHECK(stopped.samples == plain.samples);  // the single-node ray never reaches its map index
       endInside += occlusion.occludedPixels();
     }

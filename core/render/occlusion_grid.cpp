@@ -70,18 +70,24 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
 void OcclusionGrid::occludedFrom(const glm::vec3* origins, const glm::vec3* directions, const float* phases, int count,
                                  float step, long* out) const {
   constexpr int kLanes = 8;
-  for (int first = 0; first < count; first += kLanes) {
-    const int n = std::min(kLanes, count - first);
-    Walk walks[kLanes];
-    bool started[kLanes] = {};
-    int live = 0;
-    for (int i = 0; i < n; ++i) {
-      started[i] = startWalk(origins[first + i], directions[first + i], step, phases[first + i], walks[i]);
-      live += started[i];
+  int first = 0;
+  for (; first + kLanes <= count; first += kLanes) {
+    VoxelRays8 rays;
+    for (int j = 0; j < kLanes; ++j) {
+      const glm::vec3 &o = origins[first + j], &d = directions[first + j];
+      rays.ox[j] = o.x, rays.oy[j] = o.y, rays.oz[j] = o.z, rays.dx[j] = d.x, rays.dy[j] = d.y, rays.dz[j] = d.z;
+      rays.phase[j] = phases[first + j];
     }
-    if (n == kLanes && live > 1 && walk8(walks, started, step, out + first)) continue;
-    for (int i = 0; i < n; ++i) out[first + i] = started[i] ? walk(walks[i], step) : kNever;
+    occludedFrom(rays, step, out + first);
   }
+  for (; first < count; ++first) out[first] = occludedFrom(origins[first], directions[first], step, phases[first]);
+}
+
+void OcclusionGrid::occludedFrom(const VoxelRays8& rays, float step, long* out) const {
+  if (active_ && step > 0.0f && walkRays8(rays, step, out)) return;
+  for (int j = 0; j < 8; ++j)
+    out[j] = occludedFrom(glm::vec3(rays.ox[j], rays.oy[j], rays.oz[j]), glm::vec3(rays.dx[j], rays.dy[j], rays.dz[j]),
+                          step, rays.phase[j]);
 }
 
 bool OcclusionGrid::startWalk(const glm::vec3& o, const glm::vec3& d, float step, float phase, Walk& w) const {

@@ -15,6 +15,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/render/ray_setup.h"
 #include "core/transfer/transfer_function.h"
 #include "core/volume/brick.h"
 
@@ -55,6 +56,8 @@ class OcclusionGrid {
   //! AVX2, eight rays walk the cells at once (the map's per-pixel walks were ~20% of a frame).
   void occludedFrom(const glm::vec3* origins, const glm::vec3* directions, const float* phases, int count, float step,
                     long* out) const;
+  //! occludedFrom for eight rays given lane by lane (as the eight-pixel ray setup makes them).
+  void occludedFrom(const VoxelRays8& rays, float step, long* out) const;
 
  private:
   //! One ray's walk through the cells, between cell crossings (for the walks in occlusion_grid*.cpp).
@@ -72,8 +75,9 @@ class OcclusionGrid {
   long walk(Walk w, float step) const;
   //! The threshold is reached in the current segment: the lattice index that reaches it.
   long reachedAt(float sum, float depth, float first, float samples) const;
-  //! Eight walks at once (occlusion_grid_avx2.cpp); false when this CPU or build has no AVX2.
-  bool walk8(const Walk* walks, const bool* started, float step, long* out) const;
+  //! occludedFrom of eight rays, started and walked eight at once (occlusion_grid_avx2.cpp): the
+  //! same answers; false when this CPU or build has no AVX2.
+  bool walkRays8(const VoxelRays8& rays, float step, long* out) const;
 
   glm::ivec3 count_{0};
   glm::vec3 domainHi_{0.0f};  //!< samples lie in [0, dims - 1) per axis

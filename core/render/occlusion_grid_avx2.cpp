@@ -4,6 +4,8 @@
 // numbers of cells, so few lanes idle long.
 #include "core/render/occlusion_grid.h"
 
+#include <limits>
+
 #include "core/util/cpu_features.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -102,31 +104,103 @@ KDSWAP_AVX2 void walkEight(const float* depthOf, int countX, int countY, int cou
   }
 }
 
+
+//! The box the walks are clipped to and the grid's size: what startWalk reads.
+struct StartConstants {
+  float lo[3], hi[3];  //!< depthLo_, depthHi_
+  int count[3];
+};
+
+//! (a < b) ? b : a, as std::max(a, b); and (b < a) ? b : a, as std::min(a, b).
+KDSWAP_AVX2 inline __m256 maxOf(__m256 a, __m256 b) { return _mm256_blendv_ps(a, b, _mm256_cmp_ps(a, b, _CMP_LT_OQ)); }
+KDSWAP_AVX2 inline __m256 minOf(__m256 a, __m256 b) { return _mm256_blendv_ps(a, b, _mm256_cmp_ps(b, a, _CMP_LT_OQ)); }
+
+//! OcclusionGrid::startWalk for eight rays (o, d per axis in lanes): each lane performs its
+//! operations in the same order, so `out` holds what the scalar start would give that ray. Returns
+//! the lanes that start (the scalar start returns true); the others are idle and zero.
+KDSWAP_AVX2 int startEight(const StartConstants& c, const __m256* o, const __m256* d, __m256 phase, float step,
+                           Lanes& out) {
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 t0 = zero, t1 = _mm256_set1_ps(std::numeric_limits<float>::max());
+  __m256 refused = zero;
+  __m256 flat[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m256 lo = _mm256_set1_ps(c.lo[a]), hi = _mm256_set1_ps(c.hi[a]);
+    flat[a] = _mm256_cmp_ps(d[a], zero, _CMP_EQ_OQ);  // d[a] == 0: outside the slab ends the walk
+    refused = _mm256_or_ps(refused, _mm256_and_ps(flat[a], _mm256_or_ps(_mm256_cmp_ps(o[a], lo, _CMP_LT_OQ),
+                                                                         _mm256_cmp_ps(o[a], hi, _CMP_GT_OQ))));
+    __m256 ta = _mm256_div_ps(_mm256_sub_ps(lo, o[a]), d[a]), tb = _mm256_div_ps(_mm256_sub_ps(hi, o[a]), d[a]);
+    const __m256 swap = _mm256_cmp_ps(ta, tb, _CMP_GT_OQ);
+    const __m256 near = _mm256_blendv_ps(ta, tb, swap), far = _mm256_blendv_ps(tb, ta, swap);
+    t0 = _mm256_blendv_ps(maxOf(t0, near), t0, flat[a]);
+    t1 = _mm256_blendv_ps(minOf(t1, far), t1, flat[a]);
+  }
+  // !(t1 - t0 > 2 step)
+  refused = _mm256_or_ps(refused, _mm256_cmp_ps(_mm256_sub_ps(t1, t0), _mm256_set1_ps(2.0f * step), _CMP_NGT_UQ));
+  const int started = ~_mm256_movemask_ps(refused) & 0xFF;
+  const __m256i keep = _mm256_castps_si256(_mm256_andnot_ps(refused, _mm256_castsi256_ps(_mm256_set1_epi32(-1))));
+  const float cellSize = float(1 << CellRangeGrid::kShift);
+  __m256i cell[3], dir[3];
+  __m256 exit[3], delta[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m256 start = _mm256_add_ps(o[a], _mm256_mul_ps(d[a], t0));  // o + d * t0
+    const __m256i floored = _mm256_cvttps_epi32(_mm256_floor_ps(_mm256_div_ps(start, _mm256_set1_ps(cellSize))));
+    // std::clamp(v, 0, count - 1)
+    cell[a] = _mm256_min_epi32(_mm256_max_epi32(floored, _mm256_setzero_si256()), _mm256_set1_epi32(c.count[a] - 1));
+    const __m256 up = _mm256_cmp_ps(d[a], zero, _CMP_GT_OQ);
+    dir[a] = _mm256_blendv_epi8(_mm256_set1_epi32(-1), _mm256_set1_epi32(1), _mm256_castps_si256(up));
+    // boundary = float((cell + (d > 0 ? 1 : 0)) * kCell); exit = (boundary - o) / d; delta = kCell / |d|
+    const __m256i face = _mm256_sub_epi32(cell[a], _mm256_castps_si256(up));  // up lanes are -1: cell + 1
+    const __m256 boundary = _mm256_cvtepi32_ps(_mm256_slli_epi32(face, CellRangeGrid::kShift));
+    exit[a] = _mm256_blendv_ps(_mm256_div_ps(_mm256_sub_ps(boundary, o[a]), d[a]),
+                               _mm256_set1_ps(std::numeric_limits<float>::infinity()), flat[a]);
+    delta[a] = _mm256_blendv_ps(_mm256_div_ps(_mm256_set1_ps(cellSize), _mm256_andnot_ps(_mm256_set1_ps(-0.0f), d[a])),
+                                zero, flat[a]);
+    cell[a] = _mm256_and_si256(cell[a], keep);
+  }
+  const __m256i index = _mm256_add_epi32(
+      _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cell[2], _mm256_set1_epi32(c.count[1])), cell[1]),
+                         _mm256_set1_epi32(c.count[0])),
+      cell[0]);
+  const __m256 keepF = _mm256_castsi256_ps(keep);
+  _mm256_store_ps(out.t, _mm256_and_ps(t0, keepF)), _mm256_store_ps(out.t1, _mm256_and_ps(t1, keepF));
+  _mm256_store_ps(out.exitX, _mm256_and_ps(exit[0], keepF)), _mm256_store_ps(out.exitY, _mm256_and_ps(exit[1], keepF)),
+  _mm256_store_ps(out.exitZ, _mm256_and_ps(exit[2], keepF));
+  _mm256_store_ps(out.deltaX, _mm256_and_ps(delta[0], keepF)), _mm256_store_ps(out.deltaY, _mm256_and_ps(delta[1], keepF)),
+  _mm256_store_ps(out.deltaZ, _mm256_and_ps(delta[2], keepF));
+  _mm256_store_ps(out.phase, _mm256_and_ps(phase, keepF));
+  __m256i* const ints[] = {reinterpret_cast<__m256i*>(out.cx), reinterpret_cast<__m256i*>(out.cy),
+                           reinterpret_cast<__m256i*>(out.cz), reinterpret_cast<__m256i*>(out.dirX),
+                           reinterpret_cast<__m256i*>(out.dirY), reinterpret_cast<__m256i*>(out.dirZ)};
+  for (int a = 0; a < 3; ++a) _mm256_store_si256(ints[a], cell[a]), _mm256_store_si256(ints[3 + a], dir[a]);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.index), _mm256_and_si256(index, keep));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.active), keep);
+  return started;
+}
+
+//! Starts (startEight) and walks (walkEight) eight rays; returns the lanes that started.
+KDSWAP_AVX2 int startAndWalkEight(const StartConstants& c, const float* depth, float threshold, const VoxelRays8& rays,
+                                  float step, LaneEnds& ends) {
+  const __m256 o[3] = {_mm256_load_ps(rays.ox), _mm256_load_ps(rays.oy), _mm256_load_ps(rays.oz)};
+  const __m256 d[3] = {_mm256_load_ps(rays.dx), _mm256_load_ps(rays.dy), _mm256_load_ps(rays.dz)};
+  Lanes lanes;
+  const int started = startEight(c, o, d, _mm256_load_ps(rays.phase), step, lanes);
+  if (started != 0) walkEight(depth, c.count[0], c.count[1], c.count[2], threshold, step, lanes, ends);
+  return started;
+}
+
 }  // namespace
 
-bool OcclusionGrid::walk8(const Walk* walks, const bool* started, float step, long* out) const {
+bool OcclusionGrid::walkRays8(const VoxelRays8& rays, float step, long* out) const {
   // Cell indices travel as 32-bit lanes.
   if (!cpuHasAvx2() || depth_.size() >= (std::size_t(1) << 31)) return false;
-  Lanes lanes;
-  for (int j = 0; j < kLanes; ++j) {
-    const Walk& w = walks[j];
-    lanes.active[j] = started[j] ? -1 : 0;
-    if (!started[j]) {  // an idle lane: harmless values, never read
-      lanes.t[j] = lanes.t1[j] = lanes.exitX[j] = lanes.exitY[j] = lanes.exitZ[j] = 0.0f;
-      lanes.deltaX[j] = lanes.deltaY[j] = lanes.deltaZ[j] = lanes.phase[j] = 0.0f;
-      lanes.cx[j] = lanes.cy[j] = lanes.cz[j] = lanes.index[j] = 0;
-      lanes.dirX[j] = lanes.dirY[j] = lanes.dirZ[j] = 1;
-      continue;
-    }
-    lanes.t[j] = w.t, lanes.t1[j] = w.t1, lanes.exitX[j] = w.exitX, lanes.exitY[j] = w.exitY, lanes.exitZ[j] = w.exitZ;
-    lanes.deltaX[j] = w.deltaX, lanes.deltaY[j] = w.deltaY, lanes.deltaZ[j] = w.deltaZ, lanes.phase[j] = w.phase;
-    lanes.cx[j] = w.cx, lanes.cy[j] = w.cy, lanes.cz[j] = w.cz, lanes.index[j] = int(w.index);
-    lanes.dirX[j] = w.dirX, lanes.dirY[j] = w.dirY, lanes.dirZ[j] = w.dirZ;
-  }
+  const StartConstants constants{{depthLo_.x, depthLo_.y, depthLo_.z}, {depthHi_.x, depthHi_.y, depthHi_.z},
+                                 {count_.x, count_.y, count_.z}};
   LaneEnds ends;
-  walkEight(depth_.data(), count_.x, count_.y, count_.z, threshold_, step, lanes, ends);
+  const int started = startAndWalkEight(constants, depth_.data(), threshold_, rays, step, ends);
   for (int j = 0; j < kLanes; ++j)
-    out[j] = started[j] && ends.reached[j] ? reachedAt(ends.sum[j], ends.depth[j], ends.first[j], ends.samples[j]) : kNever;
+    out[j] = (started >> j & 1) && ends.reached[j] ? reachedAt(ends.sum[j], ends.depth[j], ends.first[j], ends.samples[j])
+                                                   : kNever;
   return true;
 }
 
@@ -135,7 +209,7 @@ bool OcclusionGrid::walk8(const Walk* walks, const bool* started, float step, lo
 #else
 
 namespace kdswap {
-bool OcclusionGrid::walk8(const Walk*, const bool*, float, long*) const { return false; }
+bool OcclusionGrid::walkRays8(const VoxelRays8&, float, long*) const { return false; }
 }  // namespace kdswap
 
 #endif

@@ -48,10 +48,20 @@ struct RayLanes8 {
   int windows = 0;
 };
 
+//! Just the voxel rays of eight pixels (Camera::ray, then VoxelRay), for the occlusion map.
+struct VoxelRays8 {
+  alignas(32) float ox[8], oy[8], oz[8];  //!< voxel coordinates
+  alignas(32) float dx[8], dy[8], dz[8];  //!< voxel coordinates per unit of world t
+  alignas(32) float phase[8];
+};
+
 //! Whether setupRays8 runs here: AVX2 in this build and CPU, and KDSWAP_SIMD is not "scalar".
 bool raySetup8Available();
 //! Pixels x0 .. x0 + 7 of row y (lanes past the frame compute harmless numbers). Only when
 //! raySetup8Available().
 void setupRays8(const RaySetupConstants& c, int x0, int y, RayLanes8& out);
+//! The rays alone of setupRays8 (only camera, inverseSpacing and jitter of `c` are read); the
+//! same bits. Only when raySetup8Available().
+void voxelRays8(const RaySetupConstants& c, int x0, int y, VoxelRays8& out);
 
 }  // namespace kdswap

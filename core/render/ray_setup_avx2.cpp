@@ -70,7 +70,12 @@ KDSWAP_AVX2 inline __m256i ownedWindow(__m256i k, __m256 phase, const RaySetupCo
   return bits;
 }
 
-KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLanes8& out) {
+//! Camera::ray and VoxelRay of pixels x0 .. x0 + 7 of row y, in lanes.
+struct Rays {
+  __m256 ox, oy, oz, dx, dy, dz, wdx, wdy, wdz, phase;
+};
+
+KDSWAP_AVX2 inline Rays raysOf(const RaySetupConstants& c, int x0, int y) {
   const Camera::Basis& b = c.camera;
   // Camera::ray: sx per lane, sy for the row.
   const __m256i px = _mm256_add_epi32(_mm256_set1_epi32(x0), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
@@ -101,6 +106,20 @@ KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLa
   const __m256 dx = _mm256_mul_ps(wdx, splat(c.inverseSpacing.x)), dy = _mm256_mul_ps(wdy, splat(c.inverseSpacing.y)),
                dz = _mm256_mul_ps(wdz, splat(c.inverseSpacing.z));
   const __m256 phase = c.jitter ? pixelOffsets(px, y) : _mm256_setzero_ps();
+  return Rays{ox, oy, oz, dx, dy, dz, wdx, wdy, wdz, phase};
+}
+
+KDSWAP_AVX2 void voxelRays8Avx2(const RaySetupConstants& c, int x0, int y, VoxelRays8& out) {
+  const Rays r = raysOf(c, x0, y);
+  _mm256_store_ps(out.ox, r.ox), _mm256_store_ps(out.oy, r.oy), _mm256_store_ps(out.oz, r.oz);
+  _mm256_store_ps(out.dx, r.dx), _mm256_store_ps(out.dy, r.dy), _mm256_store_ps(out.dz, r.dz);
+  _mm256_store_ps(out.phase, r.phase);
+}
+
+KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLanes8& out) {
+  const Rays r = raysOf(c, x0, y);
+  const __m256 ox = r.ox, oy = r.oy, oz = r.oz, dx = r.dx, dy = r.dy, dz = r.dz, phase = r.phase;
+  const __m256 wdx = r.wdx, wdy = r.wdy, wdz = r.wdz;
   // RayCaster::segmentFor: 1 / d, the rounding margin, the clip, the lattice index bounds.
   const __m256 ix = _mm256_div_ps(splat(1.0f), dx), iy = _mm256_div_ps(splat(1.0f), dy), iz = _mm256_div_ps(splat(1.0f), dz);
   const __m256 magnitude =
@@ -145,6 +164,7 @@ KDSWAP_AVX2 void setupRays8Avx2(const RaySetupConstants& c, int x0, int y, RayLa
 bool raySetup8Available() { return cpuHasAvx2() && !scalarRequested(); }
 
 void setupRays8(const RaySetupConstants& c, int x0, int y, RayLanes8& out) { setupRays8Avx2(c, x0, y, out); }
+void voxelRays8(const RaySetupConstants& c, int x0, int y, VoxelRays8& out) { voxelRays8Avx2(c, x0, y, out); }
 
 }  // namespace kdswap
 
@@ -153,6 +173,7 @@ void setupRays8(const RaySetupConstants& c, int x0, int y, RayLanes8& out) { set
 namespace kdswap {
 bool raySetup8Available() { return false; }
 void setupRays8(const RaySetupConstants&, int, int, RayLanes8&) {}
+void voxelRays8(const RaySetupConstants&, int, int, VoxelRays8&) {}
 }  // namespace kdswap
 
 #endif
