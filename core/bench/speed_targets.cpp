@@ -10,6 +10,7 @@
 #include "core/bench/paper_comparison.h"
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
+#include "core/bench/statistics.h"
 #include "core/volume/respaced_source.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
@@ -185,6 +186,33 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                    c.wallSeconds * 1e3, paper * 1e3 / 10.0, "ms", false, !interrupted,
                    "paper " + ms(paper) + " (" + cell.source + "); our modelled parallel time " +
                        ms(c.modelledSeconds)});
+  }
+  return out;
+}
+
+std::vector<SpeedTarget> medianOfRuns(const std::vector<std::vector<SpeedTarget>>& runs) {
+  if (runs.empty()) return {};
+  if (runs.size() == 1) return runs.front();
+  std::vector<SpeedTarget> out = runs.front();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    SpeedTarget& t = out[i];
+    if (t.unit == "MB") {
+      t.note += (t.note.empty() ? "" : "; ") + std::string("first of the runs only (a fresh process)");
+      continue;
+    }
+    std::vector<double> values;
+    std::string each;
+    for (const std::vector<SpeedTarget>& run : runs) {
+      if (i >= run.size() || run[i].name != t.name || !run[i].ran) continue;
+      values.push_back(run[i].measured);
+      each += (each.empty() ? "" : ", ") + fixed(run[i].measured);
+    }
+    t.ran = !values.empty();
+    t.measured = median(values);
+    const std::string runsNote =
+        "median of " + std::to_string(values.size()) + (values.size() == 1 ? " run: " : " runs: ") + each;
+    t.note = t.note.empty() ? runsNote : runsNote + "; first run: " + runs[0][i].note;
+    if (!t.ran) t.note = "not run";
   }
   return out;
 }

@@ -38,6 +38,13 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& options, const std
 
 std::string formatSpeedTargets(const std::vector<SpeedTarget>& targets);
 
+//! One list from several runs of runSpeedTargets (the same targets in the same order; a run cut
+//! short has fewer): each target's measurement is the median over the runs that measured it, and
+//! its note gives every run's figure. On a shared machine whose speed moves between minutes, one
+//! run's verdict can flip; the median of runs spread over time is the figure to judge. Peak RSS is
+//! taken from the first run alone: only a fresh process's peak is the P=64 frame's own.
+std::vector<SpeedTarget> medianOfRuns(const std::vector<std::vector<SpeedTarget>>& runs);
+
 //! "Faster than VTK" judged against VTK measured on this machine: `fixed` (the target for
 //! `scene`, already measured) with the limit half of `vtkMs`.
 SpeedTarget halfOfVtkHere(const SpeedTarget& fixed, const std::string& scene, double vtkMs);
