@@ -23,7 +23,7 @@ OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, cons
   const VoxelRay::Scale scale(spacing, settings);
   // Rays eight pixels at a time where AVX2 allows (the same numbers as VoxelRay, ray_setup.h).
   const bool simdRays = raySetup8Available();
-  RaySetupConstants rays8;
+  RaySetupConstants rays8{};
   rays8.camera = camera.basis(), rays8.inverseSpacing = scale.inverseSpacing, rays8.jitter = scale.jitter;
   tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
