@@ -93,7 +93,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   const double budget = 1.25 * kVoxelBytes * 256.0 * 256.0 * 256.0;
   out.push_back({"peak RSS with P=64, 256^3 (<= 1.25 x volume + gradients, 16 B/voxel)",
                  gridCommand(phantomData, p64, o.frames) + "   (peak_rss_bytes in bench.json)", double(rss) / 1e6,
-                 budget / 1e6, "MB", false, !interrupted, "process peak (VmHWM), includes the program itself"});
+                 budget / 1e6, "MB", false, !interrupted, "process peak (VmHWM), includes the program itself",
+                 /*firstRunOnly=*/true});
   if (stopped()) return out;
 
   say("phantom:256 uint8, P=1 ...");
@@ -196,7 +197,7 @@ std::vector<SpeedTarget> medianOfRuns(const std::vector<std::vector<SpeedTarget>
   std::vector<SpeedTarget> out = runs.front();
   for (std::size_t i = 0; i < out.size(); ++i) {
     SpeedTarget& t = out[i];
-    if (t.unit == "MB") {
+    if (t.firstRunOnly) {
       t.note += (t.note.empty() ? "" : "; ") + std::string("first of the runs only (a fresh process)");
       continue;
     }

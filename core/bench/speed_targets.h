@@ -17,6 +17,9 @@ struct SpeedTarget {
   bool atLeast = false; //!< true: met when measured >= limit; false: when measured <= limit
   bool ran = false;     //!< false when skipped (missing file, interrupted)
   std::string note;
+  //! Judged by the first of several runs only (medianOfRuns): a process-wide peak, which later
+  //! runs inherit from the targets before them.
+  bool firstRunOnly = false;
   bool met() const { return ran && (atLeast ? measured >= limit : measured <= limit); }
 };
 

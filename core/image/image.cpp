@@ -114,12 +114,11 @@ Image overOf(const ImageView& front, const ImageView& back) {
     if (inBack) std::memcpy(row + back.rect.x, back.row(y), sizeof(Rgba) * std::size_t(back.rect.w));
     if (!inFront) continue;
     const Rgba* f = front.row(y) - front.rect.x;
-    // Over the part `back` covers, blend; elsewhere over a transparent pixel is a copy.
-    const int lo = inBack ? std::max(front.rect.x, back.rect.x) : front.rect.x;
-    const int hi = inBack ? std::min(front.rect.right(), back.rect.right()) : front.rect.x;
-    const int copyEnd = lo < hi ? lo : front.rect.right();
-    std::memcpy(row + front.rect.x, f + front.rect.x, sizeof(Rgba) * std::size_t(copyEnd - front.rect.x));
-    if (lo >= hi) continue;
+    // The row of `front` in three parts: [x, lo) and [hi, right) are over a transparent pixel (a
+    // copy), [lo, hi) is where `back` covers too (a blend; empty when it does not).
+    const int lo = inBack ? std::min(std::max(front.rect.x, back.rect.x), front.rect.right()) : front.rect.x;
+    const int hi = inBack ? std::max(lo, std::min(front.rect.right(), back.rect.right())) : lo;
+    std::memcpy(row + front.rect.x, f + front.rect.x, sizeof(Rgba) * std::size_t(lo - front.rect.x));
     for (int x = lo; x < hi; ++x) row[x] = over(f[x], row[x]);
     std::memcpy(row + hi, f + hi, sizeof(Rgba) * std::size_t(front.rect.right() - hi));
   }

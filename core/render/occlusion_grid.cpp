@@ -67,22 +67,6 @@ long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float s
   return startWalk(o, d, step, phase, w) ? walk(w, step) : kNever;
 }
 
-void OcclusionGrid::occludedFrom(const glm::vec3* origins, const glm::vec3* directions, const float* phases, int count,
-                                 float step, long* out) const {
-  constexpr int kLanes = 8;
-  int first = 0;
-  for (; first + kLanes <= count; first += kLanes) {
-    VoxelRays8 rays;
-    for (int j = 0; j < kLanes; ++j) {
-      const glm::vec3 &o = origins[first + j], &d = directions[first + j];
-      rays.ox[j] = o.x, rays.oy[j] = o.y, rays.oz[j] = o.z, rays.dx[j] = d.x, rays.dy[j] = d.y, rays.dz[j] = d.z;
-      rays.phase[j] = phases[first + j];
-    }
-    occludedFrom(rays, step, out + first);
-  }
-  for (; first < count; ++first) out[first] = occludedFrom(origins[first], directions[first], step, phases[first]);
-}
-
 void OcclusionGrid::occludedFrom(const VoxelRays8& rays, float step, long* out) const {
   if (active_ && step > 0.0f && walkRays8(rays, step, out)) return;
   for (int j = 0; j < 8; ++j)

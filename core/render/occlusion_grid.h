@@ -52,11 +52,9 @@ class OcclusionGrid {
   //! o + d t (voxel coordinates) certainly reach opacity stopAt: the single-node ray ends before
   //! sample K, so no sample k >= K counts. The smallest such K the summary proves; kNever if none.
   long occludedFrom(const glm::vec3& o, const glm::vec3& d, float step, float phase) const;
-  //! occludedFrom for several rays with a common step: out[i] for ray i, the same values. With
-  //! AVX2, eight rays walk the cells at once (the map's per-pixel walks were ~20% of a frame).
-  void occludedFrom(const glm::vec3* origins, const glm::vec3* directions, const float* phases, int count, float step,
-                    long* out) const;
-  //! occludedFrom for eight rays given lane by lane (as the eight-pixel ray setup makes them).
+  //! occludedFrom for eight rays given lane by lane (as the eight-pixel ray setup makes them), the
+  //! same values. With AVX2 the eight walk the cells at once (the map's per-pixel walks were ~20%
+  //! of a frame).
   void occludedFrom(const VoxelRays8& rays, float step, long* out) const;
 
  private:
