@@ -36,7 +36,7 @@ struct BenchOptions {
   std::string head = "../shared/data/headsq.nhdr", view = "30,15";
   std::string vtkMs;
   int repeat = 1;
-  std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1";
+  std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1", voxels = "auto";
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
   bool sparse = false, micro = false, paper = false, targets = false;
@@ -94,7 +94,7 @@ std::string commandLine(const BenchOptions& o) {
                 o.threads);
   return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --balance " + o.balance +
          (o.speeds.empty() ? "" : " --speeds " + o.speeds) + " --bricks-per-node " + o.bricksPerNode +
-         " --network " + o.network + " --out-dir " + o.outDir;
+         " --network " + o.network + " --voxels " + o.voxels + " --out-dir " + o.outDir;
 }
 
 void runGrid(const BenchOptions& o) {
@@ -125,6 +125,7 @@ void runGrid(const BenchOptions& o) {
   g.cluster.composite.sparse = o.sparse;
   g.cluster.threads = o.threads;
   g.cluster.network = networkModel(o.network);
+  g.cluster.voxels = parseVoxelChoice(o.voxels);
   g.balances = parseNames(o.balance);
   g.bricksPerNode = parseList<int>(o.bricksPerNode, "--bricks-per-node", 1, 64);
   for (const std::string& b : g.balances)
@@ -137,11 +138,13 @@ void runGrid(const BenchOptions& o) {
 
   const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
   std::fprintf(stderr, "\n");
+  const VoxelStorage storage = VoxelStorage::forVolume(info, g.cluster.voxels);
   BenchContext ctx{commandLine(o), o.volume.empty() ? (o.dataset.empty() ? kDefaultDataset : o.dataset) : o.volume,
-                   info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees};
-  std::printf("%s (%dx%dx%d %s), step %g, shading %s, median of %d frames turning %g deg/frame\n\n",
-              ctx.dataset.c_str(), info.dims.x, info.dims.y, info.dims.z, info.type.c_str(), double(o.step),
-              o.shading.c_str(), o.frames, double(o.degrees));
+                   info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees,
+                   storage.compactFormat() ? "compact" : "float"};
+  std::printf("%s (%dx%dx%d %s, %s voxels), step %g, shading %s, median of %d frames turning %g deg/frame\n\n",
+              ctx.dataset.c_str(), info.dims.x, info.dims.y, info.dims.z, info.type.c_str(), ctx.voxels.c_str(),
+              double(o.step), o.shading.c_str(), o.frames, double(o.degrees));
   std::printf("%s%s", formatPaperLayout(result.cells).c_str(), formatCellDetails(result.cells).c_str());
   const std::filesystem::path dir(o.outDir);
   writeTextFile((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
@@ -259,6 +262,8 @@ void addBenchCommand(CLI::App& app) {
                   "Over-decomposition levels to compare, e.g. 1,4 (cells with M > 1 read STRATEGY+bricksM)")
       ->capture_default_str();
   cmd->add_option("--network", o->network, "Network model for modelled time: ideal, cm5 or ethernet10")
+      ->capture_default_str();
+  cmd->add_option("--voxels", o->voxels, "Voxel storage: auto (compact above 2^23 voxels), float or compact")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads (0 = every core)")->capture_default_str();
   cmd->add_option("--out-dir", o->outDir, "Folder for bench.csv, bench.json, speedup.png")->capture_default_str();

@@ -54,7 +54,7 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
   if (o.verify) {
     // The reference reads the whole volume, on rank 0 only.
     const FrameRequest& r = scene.request;
-    const ReferenceResult ref = renderReference(wholeVolumeBrick(*scene.source), r.view, r.width, r.height, r.transfer,
+    const ReferenceResult ref = renderReference(wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels), r.view, r.width, r.height, r.transfer,
                                                 r.settings, resolveValueRange(r.settings, scene.source->info()));
     const float diff = maxAbsDifference(frame.image, ref.image, frame.image.rect());
     const float ert = r.settings.earlyTermination;

@@ -91,7 +91,7 @@ void run(const RenderOptions& o) {
   nlohmann::json stats = frame.stats.toJson();
   bool verified = true;
   if (o.verify) {
-    const Brick whole = wholeVolumeBrick(*scene.source);
+    const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
     const ReferenceResult ref =
         renderReference(whole, scene.request.view, scene.request.width, scene.request.height, scene.request.transfer,
                         scene.request.settings, resolveValueRange(scene.request.settings, scene.source->info()));

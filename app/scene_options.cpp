@@ -8,6 +8,7 @@
 #include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
+#include "core/util/memory.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/reader.h"
 #include "core/volume/respaced_source.h"
@@ -104,6 +105,10 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
                   "Network model for the modelled time: ideal (no cost), cm5 (CM-5 fat tree: 20/10/5 MB/s), "
                   "ethernet10 (10 Mbit/s shared by all nodes)")
       ->capture_default_str();
+  cmd->add_option("--voxels", o.voxels,
+                  "How nodes store voxels: float (value and gradient as 4 floats, 16 B), compact (16-bit "
+                  "integers, 8 B: half the memory, 16-bit precision) or auto (compact above 2^23 voxels)")
+      ->capture_default_str();
   cmd->add_option("--stall-timeout", o.stallSeconds,
                   "Abort a frame when no message moves for this many seconds, naming who waits on whom")
       ->capture_default_str();
@@ -195,6 +200,14 @@ Scene buildScene(const SceneOptions& o) {
   c.balance = o.balance;
   if (o.bricksPerNode < 1 || o.bricksPerNode > 64) throw Error("--bricks-per-node must be from 1 to 64");
   c.bricksPerNode = o.bricksPerNode;
+  c.voxels = parseVoxelChoice(o.voxels);
+  if (c.voxels == VoxelChoice::Float) {  // opening the volume assumed the default storage
+    const double need = double(info.voxelCount()) * 16.0, have = double(availableMemoryBytes());
+    if (have > 0 && need > have)
+      throw Error("--voxels float: " + info.name + " needs " + formatBytes(std::uint64_t(need)) +
+                  " for float voxels and gradients, but only " + formatBytes(std::uint64_t(have)) +
+                  " is available (--voxels compact takes half)");
+  }
   c.balanceTransfer = r.transfer;
   c.balanceRange = resolveValueRange(r.settings, info);
   if (!o.speeds.empty()) {

@@ -43,6 +43,7 @@ struct SceneOptions {
   std::string speeds;          //!< "1,0.5,..." per node, repeated to P values; empty = all 1
   std::string network = "ideal";
   int bricksPerNode = 1;
+  std::string voxels = "auto";  //!< auto, float or compact (VoxelChoice)
 };
 
 struct Scene {

@@ -32,11 +32,13 @@ inline std::unique_ptr<MemoryVolume> makeVolume(glm::ivec3 dims, const std::func
 
 //! The brick owning `owned` of `source`, with its replicated and ghost layers read from it.
 //! `cellShift` as Brick's (0: by the volume's size).
-inline Brick brickOf(const VolumeSource& source, const VoxelBox& owned, int cellShift = 0) {
+inline Brick brickOf(const VolumeSource& source, const VoxelBox& owned, int cellShift = 0,
+                     VoxelChoice voxels = VoxelChoice::Auto) {
   const VoxelBox stored = Brick::storedBoxFor(owned, source.info().dims);
   std::vector<float> raw(std::size_t(stored.count()));
   source.read(stored, raw.data());
-  return Brick(owned, source.info().dims, source.info().spacing, std::move(raw), Brick::Shipping::No, cellShift);
+  return Brick(owned, source.info().dims, source.info().spacing, std::move(raw), Brick::Shipping::No, cellShift,
+               VoxelStorage::forVolume(source.info(), voxels));
 }
 
 //! A smooth blobby volume with structure at every scale the tests use.

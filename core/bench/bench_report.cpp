@@ -136,7 +136,7 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
   nlohmann::json j;
   j["command"] = ctx.commandLine;
   j["dataset"] = ctx.dataset;
-  j["volume"] = {{"dims", {ctx.dims[0], ctx.dims[1], ctx.dims[2]}}, {"type", ctx.volumeType}};
+  j["volume"] = {{"dims", {ctx.dims[0], ctx.dims[1], ctx.dims[2]}}, {"type", ctx.volumeType}, {"voxels", ctx.voxels}};
   j["settings"] = {{"step_voxels", ctx.stepVoxels},
                    {"shading", ctx.shading},
                    {"frames", ctx.frames},

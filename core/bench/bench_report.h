@@ -21,6 +21,7 @@ struct BenchContext {
   bool shading = true;
   int frames = 0;
   float degreesPerFrame = 0;
+  std::string voxels = "float";  //!< the bricks' storage: "float" or "compact"
 };
 
 //! Paper layout, one table per strategy: times in ms, maximum over nodes.

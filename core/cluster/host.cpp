@@ -13,22 +13,24 @@ namespace kdswap {
 
 namespace {
 
-Message readBrick(const VolumeSource& source, const VoxelBox& owned, int piece) {
+Message readBrick(const VolumeSource& source, const VoxelBox& owned, const VoxelStorage& storage, int piece) {
   const VolumeInfo& info = source.info();
   const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
   std::vector<float> values(std::size_t(stored.count()));
   if (!stored.empty()) source.read(stored, values.data());
-  return brickMessage(owned, info.dims, info.spacing, std::move(values), piece);
+  return brickMessage(owned, info.dims, info.spacing, storage, std::move(values), piece);
 }
 
 }  // namespace
 
-void distributeBricks(const VolumeSource& source, const KdTree& tree, Communicator& host) {
-  for (int r = 0; r < tree.ranks(); ++r) host.send(r, kBrickTag, readBrick(source, tree.brick(r), -1));
+void distributeBricks(const VolumeSource& source, const KdTree& tree, const VoxelStorage& storage, Communicator& host) {
+  for (int r = 0; r < tree.ranks(); ++r) host.send(r, kBrickTag, readBrick(source, tree.brick(r), storage, -1));
 }
 
-void distributePieces(const VolumeSource& source, const BrickLayout& layout, Communicator& host) {
-  for (int b = 0; b < layout.bricks(); ++b) host.send(layout.home(b), kBrickTag, readBrick(source, layout.box(b), b));
+void distributePieces(const VolumeSource& source, const BrickLayout& layout, const VoxelStorage& storage,
+                      Communicator& host) {
+  for (int b = 0; b < layout.bricks(); ++b)
+    host.send(layout.home(b), kBrickTag, readBrick(source, layout.box(b), storage, b));
 }
 
 Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<Rect>* regions) {

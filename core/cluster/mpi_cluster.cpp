@@ -68,14 +68,14 @@ NodeReport reportFromJson(const std::string& text, int node) {
 
 //! Reads node `node`'s brick straight from the source: only the voxels it stores (owned box plus
 //! the replicated and ghost layers), as distributeBricks + receiveBrick would have given it.
-void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdTree& tree) {
+void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdTree& tree, const VoxelStorage& storage) {
   const VolumeInfo& info = source.info();
   const VoxelBox& owned = tree.brick(node);
   const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
   std::vector<float> raw(stored.empty() ? 0 : std::size_t(stored.count()));
   if (!stored.empty()) source.read(stored, raw.data());
   state.rank = node;
-  state.brick = Brick(owned, info.dims, info.spacing, std::move(raw));
+  state.brick = Brick(owned, info.dims, info.spacing, std::move(raw), Brick::Shipping::No, 0, storage);
 }
 
 //! Everything the node and host tasks of one rank share for the frame (read-only to the nodes).
@@ -84,12 +84,13 @@ struct FrameSetup {
   KdTree tree;
   std::unique_ptr<Strategy> strategy;
   FramePlan plan;
+  VoxelStorage storage;  //!< every rank derives it from the same volume and options
 };
 
 void runNode(MpiNetwork& net, const FrameSetup& setup, NodeState& state, int node) {
   MpiCommunicator comm(net, node);
   const double start = nowSeconds();
-  loadBrick(state, node, setup.source, setup.tree);
+  loadBrick(state, node, setup.source, setup.tree, setup.storage);
   Message ready;
   ready.header = {std::int64_t((nowSeconds() - start) * 1e9)};
   comm.send(Communicator::kHost, kReadyTag, std::move(ready));
@@ -152,7 +153,8 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, const VolumeSource* source, 
       KdTree tree = KdTree::build(info.dims, net.nodes(), options.partition, options.slabAxis,
                                   strategy->treeShape(net.nodes()));
       const FramePlan plan(*request, tree, info.spacing, resolveValueRange(request->settings, info), *strategy);
-      const FrameSetup setup{*source, std::move(tree), std::move(strategy), plan};
+      const FrameSetup setup{*source, std::move(tree), std::move(strategy), plan,
+                             VoxelStorage::forVolume(info, options.voxels)};
       std::vector<NodeState> states(std::size_t(net.nodesPerRank()));
       tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
       arena.execute([&] {

@@ -13,6 +13,9 @@
 namespace kdswap {
 namespace {
 
+//! Floats before a brick message's voxels: spacing (3) and VoxelStorage (4).
+constexpr std::size_t kBrickPreamble = 7;
+
 class NodePhaseObserver : public PhaseObserver {
  public:
   NodePhaseObserver(Communicator& comm, NodeReport& report, std::vector<PhaseCell>* cells)
@@ -62,36 +65,41 @@ class NodePhaseObserver : public PhaseObserver {
 }  // namespace
 
 Message brickMessage(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing,
-                     std::vector<float> storedValues, int piece) {
+                     const VoxelStorage& storage, std::vector<float> storedValues, int piece) {
   Message m;
   m.header = {owned.lo.x, owned.lo.y, owned.lo.z, owned.hi.x, owned.hi.y, owned.hi.z, dims.x, dims.y, dims.z};
   if (piece >= 0) m.header.push_back(piece);
-  m.payload.reserve(3 + storedValues.size());
-  m.payload = {spacing.x, spacing.y, spacing.z};
+  m.payload.reserve(kBrickPreamble + storedValues.size());
+  m.payload = {spacing.x, spacing.y, spacing.z, storage.compactFormat() ? 1.0f : 0.0f, storage.valueOrigin,
+               storage.valueStep, storage.gradientScale};
   m.payload.insert(m.payload.end(), storedValues.begin(), storedValues.end());
   return m;
 }
 
 void receiveBrick(NodeState& node, Communicator& comm, int source) {
   Message m = comm.receive(source, kBrickTag);
-  // header: owned lo (3), owned hi (3), volume dims (3) [, piece]; spacing travels as the first 3
-  // payload values.
-  if ((m.header.size() != 9 && m.header.size() != 10) || m.payload.size() < 3)
+  // header: owned lo (3), owned hi (3), volume dims (3) [, piece]; spacing (3) and the voxel
+  // storage (format, value origin and step, gradient scale) travel as the first payload values.
+  if ((m.header.size() != 9 && m.header.size() != 10) || m.payload.size() < kBrickPreamble ||
+      (m.payload[3] != 0.0f && m.payload[3] != 1.0f))
     throw Error("node " + std::to_string(comm.rank()) + ": malformed brick message");
   const VoxelBox owned{glm::ivec3(int(m.header[0]), int(m.header[1]), int(m.header[2])),
                        glm::ivec3(int(m.header[3]), int(m.header[4]), int(m.header[5]))};
   const glm::ivec3 dims(int(m.header[6]), int(m.header[7]), int(m.header[8]));
   const glm::vec3 spacing(m.payload[0], m.payload[1], m.payload[2]);
-  m.payload.erase(m.payload.begin(), m.payload.begin() + 3);
+  VoxelStorage storage;
+  storage.format = m.payload[3] == 1.0f ? VoxelFormat::Compact : VoxelFormat::Float;
+  storage.valueOrigin = m.payload[4], storage.valueStep = m.payload[5], storage.gradientScale = m.payload[6];
+  m.payload.erase(m.payload.begin(), m.payload.begin() + kBrickPreamble);
   if (Brick::storedBoxFor(owned, dims).count() != std::int64_t(m.payload.size()))
     throw Error("node " + std::to_string(comm.rank()) + ": brick message holds the wrong number of voxels");
   node.rank = comm.rank();
   if (m.header.size() == 10) {
     const int piece = int(m.header[9]);
-    node.pieces.insert_or_assign(piece, Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes));
+    node.pieces.insert_or_assign(piece, Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes, 0, storage));
     node.pieceEmptySpace.erase(piece);
   } else {
-    node.brick = Brick(owned, dims, spacing, std::move(m.payload));
+    node.brick = Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::No, 0, storage);
     node.brickEmptySpace.clear();
   }
 }
@@ -113,7 +121,7 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
   const int rank = comm.rank();
   for (auto [brick, dest] : s.ships[std::size_t(rank)]) {
     const Brick& b = node.pieces.at(brick);
-    comm.send(dest, kBrickTag, brickMessage(b.owned(), b.volumeDims(), b.spacing(), b.storedValues(), brick));
+    comm.send(dest, kBrickTag, brickMessage(b.owned(), b.volumeDims(), b.spacing(), b.storage(), b.storedValues(), brick));
   }
   for (int i = 0; i < s.receives[std::size_t(rank)]; ++i) receiveBrick(node, comm, Mailbox::kAnySource);
 

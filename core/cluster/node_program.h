@@ -34,9 +34,10 @@ struct NodeState {
 };
 
 //! A brick message: the voxels of Brick::storedBoxFor(owned, dims), with `piece` >= 0 for an
-//! over-decomposed sub-brick (its global number), -1 for a node's one brick.
+//! over-decomposed sub-brick (its global number), -1 for a node's one brick. `storage` travels
+//! with it, so every node stores the volume's voxels alike.
 Message brickMessage(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing,
-                     std::vector<float> storedValues, int piece = -1);
+                     const VoxelStorage& storage, std::vector<float> storedValues, int piece = -1);
 
 //! Receives one brick message (from the host, or `source`) and builds its gradients in the node's
 //! own memory: node.brick, or node.pieces[piece] for a sub-brick.

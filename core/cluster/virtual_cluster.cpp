@@ -126,7 +126,10 @@ VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions&
       [&](int rank, Communicator& comm) {
         for (int i = 0; i < layout_.perNode(); ++i) receiveBrick(nodes_[std::size_t(rank)], comm);
       },
-      true, [&] { pieces ? distributePieces(source, layout_, host) : distributeBricks(source, tree_, host); });
+      true, [&] {
+        const VoxelStorage storage = VoxelStorage::forVolume(info_, options.voxels);
+        pieces ? distributePieces(source, layout_, storage, host) : distributeBricks(source, tree_, storage, host);
+      });
   if (pieces) {
     // First frame's estimate: the cost field's, or the cells of each brick; later frames use the
     // work measured per brick (see brickWork).

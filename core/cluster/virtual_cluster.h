@@ -68,6 +68,8 @@ struct ClusterOptions {
   //! Over-decomposition: each node's brick is cut into this many sub-bricks (1 = off, up to 64),
   //! handed out on demand each frame (see BrickSchedule) and composited at their home node.
   int bricksPerNode = 1;
+  //! How nodes store voxels: Auto is compact 16-bit above 2^23 voxels (voxel_storage.h).
+  VoxelChoice voxels = VoxelChoice::Auto;
 #if defined(KDSWAP_CHECKS) && KDSWAP_CHECKS
   static constexpr bool kChecksumsByDefault = true;
 #else

@@ -112,6 +112,10 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   ShadingParameters& shading = march_.shading;
   shading.table = &table_;
   shading.scale = scale_, shading.bias = bias_;
+  if (brick.storage().compactFormat()) {  // the shader interpolates stored integers q = (value - origin) / step
+    const VoxelStorage& st = brick.storage();
+    shading.scale = scale_ * st.valueStep, shading.bias = scale_ * st.valueOrigin + bias_;
+  }
   shading.shading = settings.shading;
   shading.ambient = settings.ambient, shading.diffuse = settings.diffuse, shading.specular = settings.specular;
   shading.specularTable = specular_.data();

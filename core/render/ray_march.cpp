@@ -7,6 +7,7 @@ namespace kdswap {
 
 namespace {
 
+template <bool compact>
 Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
   ShadedSample group[FrontToBack::kGroup];  // visible samples, composited eight at a time
@@ -23,7 +24,8 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
       k = std::max(k, s.resumeAfterEmpty(m, c, reach));
       continue;
     }
-    group[waiting++] = shadeSample(m.shading, s.toLight, m.voxels, p, floor);
+    group[waiting++] = compact ? shadeCompactSample(m.shading, s.toLight, m.voxels, p, floor)
+                               : shadeSample(m.shading, s.toLight, m.voxels, p, floor);
     if (waiting < FrontToBack::kGroup) continue;
     const bool done = result.addEight(group, waiting, m.stopTransmittance, taken);
     samples += std::uint64_t(taken);
@@ -41,7 +43,10 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
 
 void marchScalar(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
                  std::uint64_t& samples) {
-  for (std::size_t i = 0; i < count; ++i) colours[i] = marchOne(m, segments[i], samples);
+  if (m.voxels.compact)
+    for (std::size_t i = 0; i < count; ++i) colours[i] = marchOne<true>(m, segments[i], samples);
+  else
+    for (std::size_t i = 0; i < count; ++i) colours[i] = marchOne<false>(m, segments[i], samples);
 }
 
 MarchFunction selectedMarchFunction() {

@@ -10,6 +10,7 @@
 #include "core/render/ray_march.h"
 
 #include <climits>
+#include <type_traits>
 
 #include "core/util/cpu_features.h"
 
@@ -132,10 +133,39 @@ KDSWAP_AVX2 inline Directions8 sameDirection(const glm::vec3& d) {
   return Directions8{_mm256_set1_ps(d.x), _mm256_set1_ps(d.y), _mm256_set1_ps(d.z)};
 }
 
-//! shadeSample for eight samples at points (px, py, pz) with voxels corner[j] at their floors and
-//! lane j's light direction toLight lane j.
+//! interpolateCompact for eight samples: sample j's corner record at its floor is corner[j]; both
+//! x corners of each (y, z) pair come in one 16-byte load, widened to 32 bits and converted (exact),
+//! summed over (y, z) in eight lanes (face x | face x + 1), then the faces blended and added.
+//! out[q]: component q (value, gradient x, y, z) of the eight samples, in lane order.
+KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, std::ptrdiff_t sy, std::ptrdiff_t sz,
+                                            __m256 fx, __m256 fy, __m256 fz, __m256 gx, __m256 gy, __m256 gz,
+                                            __m256* out) {
+  const __m256 yz[4] = {_mm256_mul_ps(gy, gz), _mm256_mul_ps(fy, gz), _mm256_mul_ps(gy, fz), _mm256_mul_ps(fy, fz)};
+  const std::ptrdiff_t at[4] = {0, sy, sz, sz + sy};
+  __m128 sample[kLanes];
+  for (int j = 0; j < kLanes; ++j) {
+    const __m256i lane = _mm256_set1_epi32(j);
+    __m256 faces = _mm256_setzero_ps();
+    for (int c = 0; c < 4; ++c) {
+      const __m256 pair = _mm256_cvtepi32_ps(
+          _mm256_cvtepi16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(corner[j] + at[c]))));
+      const __m256 term = _mm256_mul_ps(_mm256_permutevar8x32_ps(yz[c], lane), pair);
+      faces = c == 0 ? term : _mm256_add_ps(faces, term);
+    }
+    const __m256 blend = _mm256_blend_ps(_mm256_permutevar8x32_ps(gx, lane), _mm256_permutevar8x32_ps(fx, lane), 0xF0);
+    faces = _mm256_mul_ps(faces, blend);
+    sample[j] = _mm_add_ps(_mm256_castps256_ps128(faces), _mm256_extractf128_ps(faces, 1));
+  }
+  __m256 t[4];
+  for (int j = 0; j < 4; ++j) t[j] = _mm256_set_m128(sample[j + 4], sample[j]);
+  transposeHalves(t, out);
+}
+
+//! shadeSample (or shadeCompactSample) for eight samples at points (px, py, pz) with voxels
+//! corner[j] at their floors and lane j's light direction toLight lane j.
+template <typename VoxelT>
 KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m256 px, __m256 py, __m256 pz,
-                        const Voxel* const* corner, Shaded8& out) {
+                        const VoxelT* const* corner, Shaded8& out) {
   const ShadingParameters& params = m.shading;
   const __m256 one = _mm256_set1_ps(1.0f);
   // p >= 0: truncation is floor.
@@ -143,19 +173,23 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m25
   const __m256 fy = _mm256_sub_ps(py, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(py)));
   const __m256 fz = _mm256_sub_ps(pz, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(pz)));
   const __m256 gx = _mm256_sub_ps(one, fx), gy = _mm256_sub_ps(one, fy), gz = _mm256_sub_ps(one, fz);
-  const __m256 w[8] = {
-      _mm256_mul_ps(_mm256_mul_ps(gx, gy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), gz),
-      _mm256_mul_ps(_mm256_mul_ps(gx, fy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), gz),
-      _mm256_mul_ps(_mm256_mul_ps(gx, gy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), fz),
-      _mm256_mul_ps(_mm256_mul_ps(gx, fy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), fz)};
-
-  // Samples j and j + 4 share a register; a 4x4 transpose in each half then gives one register
-  // per quantity with the samples in order.
   const std::ptrdiff_t sy = m.voxels.sy, sz = m.voxels.sz;
-  __m256 t[4], q[4];
-  for (int j = 0; j < 4; ++j)
-    t[j] = interpolatePair(corner[j], corner[j + 4], sy, sz, w, _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4));
-  transposeHalves(t, q);
+  __m256 q[4];
+  if constexpr (std::is_same_v<VoxelT, CompactVoxel>) {
+    interpolateCompact8(corner, sy, sz, fx, fy, fz, gx, gy, gz, q);
+  } else {
+    const __m256 w[8] = {
+        _mm256_mul_ps(_mm256_mul_ps(gx, gy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), gz),
+        _mm256_mul_ps(_mm256_mul_ps(gx, fy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), gz),
+        _mm256_mul_ps(_mm256_mul_ps(gx, gy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), fz),
+        _mm256_mul_ps(_mm256_mul_ps(gx, fy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), fz)};
+    // Samples j and j + 4 share a register; a 4x4 transpose in each half then gives one register
+    // per quantity with the samples in order.
+    __m256 t[4];
+    for (int j = 0; j < 4; ++j)
+      t[j] = interpolatePair(corner[j], corner[j + 4], sy, sz, w, _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4));
+    transposeHalves(t, q);
+  }
   const __m256 value = q[0], gradX = q[1], gradY = q[2], gradZ = q[3];
 
   // TransferTable::lookup: clamp (NaN to 0), then linear between entries i and i + 1.
@@ -221,7 +255,6 @@ struct BrickConstants {
   __m256i lane, cellLoX, cellLoY, cellLoZ, countX, countY, loX, loY, loZ, sy, sz;
   __m256 boxLoX, boxLoY, boxLoZ, boxHiX, boxHiY, boxHiZ;  //!< owned box, for the empty cubes' faces
   __m128i cellShift;  //!< shift count: voxel index -> cell index
-  const Voxel* data;
 };
 
 KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
@@ -235,7 +268,6 @@ KDSWAP_AVX2 inline BrickConstants brickConstants(const MarchContext& m) {
   c.boxLoX = _mm256_set1_ps(m.lo.x), c.boxLoY = _mm256_set1_ps(m.lo.y), c.boxLoZ = _mm256_set1_ps(m.lo.z);
   c.boxHiX = _mm256_set1_ps(m.hi.x), c.boxHiY = _mm256_set1_ps(m.hi.y), c.boxHiZ = _mm256_set1_ps(m.hi.z);
   c.cellShift = _mm_cvtsi32_si128(m.cellShift);
-  c.data = m.voxels.data;
   return c;
 }
 
@@ -387,18 +419,29 @@ KDSWAP_AVX2 inline bool compositeEight(FrontToBack& result, const Shaded8& s, in
   return stops != 0;
 }
 
+//! The brick's voxels in the format VoxelT.
+template <typename VoxelT>
+inline const VoxelT* voxelsOf(const MarchContext& m) {
+  if constexpr (std::is_same_v<VoxelT, CompactVoxel>)
+    return m.voxels.compact;
+  else
+    return m.voxels.data;
+}
+
 //! Corner pointers of eight samples from their voxel offsets.
-KDSWAP_AVX2 inline void cornersOf(const Voxel* data, __m256i offset, const Voxel** corner) {
+template <typename VoxelT>
+KDSWAP_AVX2 inline void cornersOf(const VoxelT* data, __m256i offset, const VoxelT** corner) {
   alignas(32) int offsets[kLanes];
   _mm256_store_si256(reinterpret_cast<__m256i*>(offsets), offset);
   for (int j = 0; j < kLanes; ++j) corner[j] = data + offsets[j];
 }
 
 //! Shades eight samples of (x, y, z, offset) and composites them in order; true when the ray is done.
-KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegment& s, const Voxel* data, __m256 x,
+template <typename VoxelT>
+KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegment& s, const VoxelT* data, __m256 x,
                                           __m256 y, __m256 z, __m256i offset, FrontToBack& result,
                                           std::uint64_t& samples) {
-  const Voxel* corner[kLanes];
+  const VoxelT* corner[kLanes];
   cornersOf(data, offset, corner);
   Shaded8 shaded;
   shade8(m, sameDirection(s.toLight), x, y, z, corner, shaded);
@@ -418,6 +461,7 @@ struct RayTail {
 //! partial eight would otherwise leave lanes idle (a sixth of the shaded lanes on a 64-node CT
 //! head). Each ray's samples stay together and in order, and are composited as its last group, as
 //! the scalar march does; only the shading is shared, and it is per lane.
+template <typename VoxelT>
 class TailPacker {
  public:
   KDSWAP_AVX2 explicit TailPacker(const MarchContext& m, Rgba* colours, std::uint64_t& samples)
@@ -446,8 +490,8 @@ class TailPacker {
   //! Shades what is packed and composites each ray's share onto its colour.
   KDSWAP_AVX2 void flush() {
     if (size_ == 0) return;
-    const Voxel* corner[kLanes];
-    cornersOf(m_.voxels.data, offset_, corner);  // unfilled lanes keep earlier voxels of the brick
+    const VoxelT* corner[kLanes];
+    cornersOf(voxelsOf<VoxelT>(m_), offset_, corner);  // unfilled lanes keep earlier voxels of the brick
     Shaded8 shaded;
     shade8(m_, light_, x_, y_, z_, corner, shaded);
     for (int e = 0; e < count_; ++e) {
@@ -485,6 +529,7 @@ class TailPacker {
   int size_ = 0, count_ = 0;
 };
 
+template <typename VoxelT>
 KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchContext& m, const BrickConstants& bc,
                                                                 const RaySegment& s, std::uint64_t& samples,
                                                                 RayTail& tail) {
@@ -509,7 +554,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
     if (kNext <= s.last) groupAt(bc, r, m.reach, kNext, s.last, next);
 
     if (g.visible == 0xFF && waiting.size == 0) {  // dense data: eight in a row, nothing to pack
-      if (shadeAndComposite(m, s, bc.data, g.px, g.py, g.pz, g.offset, result, samples)) return;
+      if (shadeAndComposite(m, s, voxelsOf<VoxelT>(m), g.px, g.py, g.pz, g.offset, result, samples)) return;
     } else if (g.visible != 0) {
       // Pack the visible lanes behind the waiting ones: lane j of the rotated pack takes the
       // group's (j - size) mod 8-th visible sample, so lanes below `size` keep the waiting samples
@@ -529,7 +574,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
           _mm256_blendv_ps(_mm256_castsi256_ps(offset), _mm256_castsi256_ps(waiting.offset), keep));
       waiting.size += count;
       if (waiting.size >= kLanes) {
-        if (shadeAndComposite(m, s, bc.data, waiting.x, waiting.y, waiting.z, waiting.offset, result, samples)) return;
+        if (shadeAndComposite(m, s, voxelsOf<VoxelT>(m), waiting.x, waiting.y, waiting.z, waiting.offset, result, samples)) return;
         waiting.size -= kLanes;
         waiting.x = x, waiting.y = y, waiting.z = z, waiting.offset = offset;  // the overflow, at the front
       }
@@ -542,14 +587,15 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
   tail.size = waiting.size;
 }
 
-KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
-                           std::uint64_t& samples) {
+template <typename VoxelT>
+KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
+                            std::uint64_t& samples) {
   const BrickConstants constants = brickConstants(m);
   std::uint64_t taken = 0;  // a local: the callee's increments stay in a register
-  TailPacker tails(m, colours, taken);
+  TailPacker<VoxelT> tails(m, colours, taken);
   for (std::size_t i = 0; i < count; ++i) {
     RayTail tail;
-    marchRay(m, constants, segments[i], taken, tail);
+    marchRay<VoxelT>(m, constants, segments[i], taken, tail);
     if (tail.size == 0)
       colours[i] = tail.result.rgba();
     else
@@ -557,6 +603,14 @@ KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, st
   }
   tails.flush();
   samples += taken;
+}
+
+KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
+                           std::uint64_t& samples) {
+  if (m.voxels.compact)
+    marchBatch<CompactVoxel>(m, segments, count, colours, samples);
+  else
+    marchBatch<Voxel>(m, segments, count, colours, samples);
 }
 
 }  // namespace

@@ -5,13 +5,14 @@
 
 namespace kdswap {
 
-Brick wholeVolumeBrick(const VolumeSource& source, int cellShift) {
+Brick wholeVolumeBrick(const VolumeSource& source, int cellShift, VoxelChoice voxels) {
   const VolumeInfo& info = source.info();
   const VoxelBox owned{glm::ivec3(0), info.dims - 1};
   const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
   std::vector<float> raw(std::size_t(stored.count()));
   source.read(stored, raw.data());
-  return Brick(owned, info.dims, info.spacing, std::move(raw), Brick::Shipping::No, cellShift);
+  return Brick(owned, info.dims, info.spacing, std::move(raw), Brick::Shipping::No, cellShift,
+               VoxelStorage::forVolume(info, voxels));
 }
 
 glm::vec2 resolveValueRange(const RenderSettings& settings, const VolumeInfo& info) {

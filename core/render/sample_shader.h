@@ -33,11 +33,10 @@ struct ShadedSample {
   float r, g, b, a;
 };
 
-//! Sample at p (voxel coordinates, inside the brick's owned box; floor = (int) p).
+//! Shading of a sample whose value (lane 0) and gradient (lanes 1-3) are interpolated.
 //! `toLight`: unit vector from the sample to the light.
-inline ShadedSample shadeSample(const ShadingParameters& params, const glm::vec3& toLight, const VoxelAddressing& voxels,
-                                const glm::vec3& p, const glm::ivec3& floor) {
-  const TrilinearCell::Lanes both = TrilinearCell(voxels, p, floor).interpolate();
+inline ShadedSample shadeInterpolated(const ShadingParameters& params, const glm::vec3& toLight,
+                                      const TrilinearCell::Lanes& both) {
   const glm::vec4 tf = params.table->lookup(both[0] * params.scale + params.bias);
   if (tf.a <= 0.0f || !params.shading) return ShadedSample{tf.r, tf.g, tf.b, tf.a};
   const glm::vec3 grad(both[1], both[2], both[3]);
@@ -51,6 +50,18 @@ inline ShadedSample shadeSample(const ShadingParameters& params, const glm::vec3
   const glm::vec3 colour =
       glm::min(glm::vec3(tf.r, tf.g, tf.b) * (params.ambient + params.diffuse * lambert) + highlight, glm::vec3(1.0f));
   return ShadedSample{colour.r, colour.g, colour.b, tf.a};
+}
+
+//! Sample at p (voxel coordinates, inside the brick's owned box; floor = (int) p), float storage.
+inline ShadedSample shadeSample(const ShadingParameters& params, const glm::vec3& toLight, const VoxelAddressing& voxels,
+                                const glm::vec3& p, const glm::ivec3& floor) {
+  return shadeInterpolated(params, toLight, TrilinearCell(voxels, p, floor).interpolate());
+}
+
+//! The same for compact storage (params' scale and bias then map stored values, see RayCaster).
+inline ShadedSample shadeCompactSample(const ShadingParameters& params, const glm::vec3& toLight,
+                                       const VoxelAddressing& voxels, const glm::vec3& p, const glm::ivec3& floor) {
+  return shadeInterpolated(params, toLight, interpolateCompact(voxels, p, floor));
 }
 
 }  // namespace kdswap

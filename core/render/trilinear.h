@@ -1,5 +1,5 @@
 // Trilinear interpolation of a brick's stored values and gradients at a point in voxel
-// coordinates. The ray caster and the tests use this one definition.
+// coordinates, for either storage format. The ray caster and the tests use these definitions.
 #pragma once
 
 #include <cstddef>
@@ -10,13 +10,16 @@ static_assert(sizeof(kdswap::Voxel) == 4 * sizeof(float), "a Voxel must be exact
 
 namespace kdswap {
 
-//! Where a brick's voxels are: global voxel (x, y, z) is data[origin + z * sz + y * sy + x]. Taken
-//! once per ray, so the sample loop does not reload the brick's box and strides.
+//! Where a brick's voxels are: global voxel (x, y, z) is data[origin + z * sz + y * sy + x] (float
+//! storage), or compact[...] with the same index (compact storage; the other pointer is null).
+//! Taken once per ray, so the sample loop does not reload the brick's box and strides.
 struct VoxelAddressing {
   const Voxel* data;
+  const CompactVoxel* compact;
   std::ptrdiff_t sy, sz, origin;
   explicit VoxelAddressing(const Brick& brick)
       : data(brick.voxelData()),
+        compact(brick.compactData()),
         sy(std::ptrdiff_t(brick.strideY())),
         sz(std::ptrdiff_t(brick.strideZ())),
         origin(-(std::ptrdiff_t(brick.stored().lo.z) * sz + std::ptrdiff_t(brick.stored().lo.y) * sy +
@@ -61,5 +64,28 @@ struct TrilinearCell {
     return glm::vec3(l[1], l[2], l[3]);
   }
 };
+
+//! The compact format's interpolation at p (floor = (int) p, inside the owned box): lane 0 the
+//! stored value, lanes 1-3 the stored gradient (VoxelStorage says what they stand for). The two
+//! voxels at x and x + 1 are adjacent 8-byte records, one 16-byte load in the SIMD march, so it
+//! sums each x face over (y, z) first, corners 00 10 01 11 with weights gy gz, fy gz, gy fz, fy fz,
+//! and then blends the faces: gx * face(x) + fx * face(x + 1).
+inline TrilinearCell::Lanes interpolateCompact(const VoxelAddressing& at, const glm::vec3& p, const glm::ivec3& floor) {
+  using Lanes = TrilinearCell::Lanes;
+  const CompactVoxel* v = at.compact + (at.origin + floor.z * at.sz + floor.y * at.sy + floor.x);
+  const float fx = p.x - float(floor.x), fy = p.y - float(floor.y), fz = p.z - float(floor.z);
+  const float gx = 1.0f - fx, gy = 1.0f - fy, gz = 1.0f - fz;
+  const float yz[4] = {gy * gz, fy * gz, gy * fz, fy * fz};
+  const std::ptrdiff_t corner[4] = {0, at.sy, at.sz, at.sz + at.sy};
+  auto load = [](const CompactVoxel& c) {
+    return Lanes{float(c.value), float(c.gradient[0]), float(c.gradient[1]), float(c.gradient[2])};
+  };
+  Lanes face0 = yz[0] * load(v[0]), face1 = yz[0] * load(v[1]);
+  for (int c = 1; c < 4; ++c) {
+    face0 = face0 + yz[c] * load(v[corner[c]]);
+    face1 = face1 + yz[c] * load(v[corner[c] + 1]);
+  }
+  return face0 * gx + face1 * fx;
+}
 
 }  // namespace kdswap

@@ -43,17 +43,18 @@ std::vector<float> Brick::storedValues() const {
   for (int z = received_.lo.z; z < received_.hi.z; ++z)
     for (int y = received_.lo.y; y < received_.hi.y; ++y)
       for (int x = received_.lo.x; x < received_.hi.x; ++x)
-        values.push_back(stored_.contains(glm::ivec3(x, y, z)) ? voxel(x, y, z).value : shell_[next++]);
+        values.push_back(stored_.contains(glm::ivec3(x, y, z)) ? valueAt(x, y, z) : shell_[next++]);
   return values;
 }
 
 Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw,
-             Shipping shipping, int cellShift)
+             Shipping shipping, int cellShift, const VoxelStorage& storage)
     : owned_(owned),
       stored_(keptBoxFor(owned)),
       received_(storedBoxFor(owned, dims)),
       dims_(dims),
       spacing_(spacing),
+      storage_(storage),
       shipping_(shipping),
       cellShift_(cellShift != 0 ? cellShift : cellShiftFor(dims)) {
   KDSWAP_CHECK(cellShift_ >= 1 && cellShift_ <= 4);
@@ -66,21 +67,30 @@ Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spa
   const glm::ivec3 s = stored_.size();
   strideY_ = std::size_t(s.x);
   strideZ_ = std::size_t(s.x) * s.y;
-  voxels_.resize(std::size_t(stored_.count()));
+  const bool compact = storage_.compactFormat();
+  if (compact)  // from here on the brick's values are the ones it stores
+    for (float& v : raw) v = storage_.value(storage_.quantiseValue(v));
+  (compact ? compact_.resize(std::size_t(stored_.count())) : voxels_.resize(std::size_t(stored_.count())));
   // Every kept voxel gets its gradient; the outer ghost layer of `raw` only feeds them.
   for (int z = stored_.lo.z; z < stored_.hi.z; ++z)
     for (int y = stored_.lo.y; y < stored_.hi.y; ++y)
       for (int x = stored_.lo.x; x < stored_.hi.x; ++x) {
-        Voxel& out = voxels_[std::size_t(z - stored_.lo.z) * strideZ_ + std::size_t(y - stored_.lo.y) * strideY_ +
-                             (x - stored_.lo.x)];
-        out.value = at(x, y, z);
         const glm::ivec3 p(x, y, z);
+        glm::vec3 gradient;
         for (int a = 0; a < 3; ++a) {
           glm::ivec3 lo = p, hi = p;
           lo[a] = std::max(p[a] - 1, 0);
           hi[a] = std::min(p[a] + 1, dims[a] - 1);
           const float span = float(hi[a] - lo[a]) * spacing[a];
-          out.gradient[a] = (at(hi.x, hi.y, hi.z) - at(lo.x, lo.y, lo.z)) / span;
+          gradient[a] = (at(hi.x, hi.y, hi.z) - at(lo.x, lo.y, lo.z)) / span;
+        }
+        const std::size_t i = keptIndex(x, y, z);
+        if (compact) {
+          CompactVoxel& out = compact_[i];
+          out.value = storage_.quantiseValue(at(x, y, z));
+          for (int a = 0; a < 3; ++a) out.gradient[a] = storage_.quantiseGradient(gradient[a]);
+        } else {
+          voxels_[i] = Voxel{at(x, y, z), gradient};
         }
       }
   if (shipping_ == Shipping::Yes) {
@@ -110,7 +120,7 @@ void Brick::widenCellRanges(int shift, const glm::ivec3& cellLo, const glm::ivec
   for (int z = std::max(stored_.lo.z, owned_.lo.z); z <= std::min(stored_.hi.z - 1, owned_.hi.z); ++z)
     for (int y = std::max(stored_.lo.y, owned_.lo.y); y <= std::min(stored_.hi.y - 1, owned_.hi.y); ++y)
       for (int x = std::max(stored_.lo.x, owned_.lo.x); x <= std::min(stored_.hi.x - 1, owned_.hi.x); ++x) {
-        const float v = voxel(x, y, z).value;
+        const float v = valueAt(x, y, z);
         const glm::ivec3 p(x, y, z);
         const glm::ivec3 c0 = glm::max((glm::max(p - 1, owned_.lo) >> shift) - cellLo, glm::ivec3(0));
         const glm::ivec3 c1 = glm::min((glm::min(p, owned_.hi - 1) >> shift) - cellLo, cellCount - 1);

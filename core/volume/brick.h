@@ -4,6 +4,9 @@
 // across a cut, and one more ghost layer so its central-difference gradients equal the whole
 // volume's. Gradients are precomputed per voxel (memory for time, as the paper does); once they
 // are, the outer ghost layer is dropped, or kept as plain values when the brick may be shipped on.
+// Voxels are kept as floats or in the compact 16-bit format (voxel_storage.h); a compact brick
+// quantises the values it receives first, so its gradients, cell ranges and shipped values all
+// come from the values it stores.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +17,7 @@
 
 #include "core/volume/cell_range_codes.h"
 #include "core/volume/voxel_box.h"
+#include "core/volume/voxel_storage.h"
 
 namespace kdswap {
 
@@ -33,8 +37,9 @@ class Brick {
   //! `raw` holds the voxels of storedBoxFor(owned, dims) (x fastest); they are consumed.
   //! `cellShift`: the empty-space cells' size, 2^cellShift voxels a side (1..4); 0 chooses it from
   //! the volume's size (cellShiftFor), as every node does, so all of a volume's bricks agree.
+  //! `storage`: the volume's (VoxelStorage::forVolume), the same for all its bricks.
   Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw,
-        Shipping shipping = Shipping::No, int cellShift = 0);
+        Shipping shipping = Shipping::No, int cellShift = 0, const VoxelStorage& storage = VoxelStorage{});
 
   //! Voxel indices a brick owning `owned` must receive: [lo - 1, hi + 1] clipped to the volume.
   static VoxelBox storedBoxFor(const VoxelBox& owned, const glm::ivec3& dims);
@@ -52,12 +57,17 @@ class Brick {
   glm::vec3 worldLo() const { return glm::vec3(owned_.lo) * spacing_; }
   glm::vec3 worldHi() const { return glm::vec3(owned_.hi) * spacing_; }
 
-  //! Kept voxel at global index (x, y, z), which must lie in stored().
-  const Voxel& voxel(int x, int y, int z) const {
-    return voxels_[(std::size_t(z - stored_.lo.z) * strideZ_) + std::size_t(y - stored_.lo.y) * strideY_ +
-                   std::size_t(x - stored_.lo.x)];
+  const VoxelStorage& storage() const { return storage_; }
+  //! Kept voxel at global index (x, y, z), which must lie in stored(); float storage only.
+  const Voxel& voxel(int x, int y, int z) const { return voxels_[keptIndex(x, y, z)]; }
+  //! The same for compact storage.
+  const CompactVoxel& compactVoxel(int x, int y, int z) const { return compact_[keptIndex(x, y, z)]; }
+  //! The stored value of kept voxel (x, y, z), either format.
+  float valueAt(int x, int y, int z) const {
+    return storage_.compactFormat() ? storage_.value(compact_[keptIndex(x, y, z)].value) : voxels_[keptIndex(x, y, z)].value;
   }
-  const Voxel* voxelData() const { return voxels_.data(); }
+  const Voxel* voxelData() const { return voxels_.data(); }            //!< null for compact storage
+  const CompactVoxel* compactData() const { return compact_.data(); }  //!< null for float storage
   std::size_t strideY() const { return strideY_; }
   std::size_t strideZ() const { return strideZ_; }
 
@@ -69,7 +79,8 @@ class Brick {
 
   //! Bytes of this node's private memory held by the brick.
   std::uint64_t bytes() const {
-    return voxels_.size() * sizeof(Voxel) + shell_.size() * sizeof(float) + cellRanges_.bytes();
+    return voxels_.size() * sizeof(Voxel) + compact_.size() * sizeof(CompactVoxel) + shell_.size() * sizeof(float) +
+           cellRanges_.bytes();
   }
 
   //! Macro cells for empty-space skipping: cell c covers samples whose floor lies in
@@ -100,7 +111,9 @@ class Brick {
   glm::ivec3 dims_{0};
   glm::vec3 spacing_{1.0f};
   std::size_t strideY_ = 0, strideZ_ = 0;
-  std::vector<Voxel> voxels_;
+  VoxelStorage storage_;
+  std::vector<Voxel> voxels_;          //!< float storage
+  std::vector<CompactVoxel> compact_;  //!< compact storage
   std::vector<float> shell_;  //!< Shipping::Yes: values of received_ outside stored_, in received_'s order
   Shipping shipping_ = Shipping::No;
   int cellShift_ = 2;
@@ -108,6 +121,9 @@ class Brick {
   CellRangeCodes cellRanges_;  //!< per macro cell, x fastest
 
   void buildCells();
+  std::size_t keptIndex(int x, int y, int z) const {
+    return std::size_t(z - stored_.lo.z) * strideZ_ + std::size_t(y - stored_.lo.y) * strideY_ + std::size_t(x - stored_.lo.x);
+  }
 };
 
 }  // namespace kdswap

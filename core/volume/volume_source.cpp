@@ -6,6 +6,7 @@
 
 #include "core/util/error.h"
 #include "core/util/memory.h"
+#include "core/volume/voxel_storage.h"
 
 namespace kdswap {
 
@@ -18,9 +19,10 @@ void validateVolumeInfo(const VolumeInfo& info, const std::string& where) {
     if (!(std::isfinite(info.spacing[a]) && info.spacing[a] > 0.0f))
       throw Error(where + ": spacing along axis " + std::to_string(a) + " must be a positive number");
   }
-  // Voxels plus gradients take 16 bytes each in the bricks (value + 3 gradient components).
+  // Voxels plus gradients take 16 bytes each in the bricks (value + 3 gradient components), 8 in
+  // the compact storage large volumes get by default (a user asking for floats is checked again).
   const double voxels = double(d.x) * double(d.y) * double(d.z);
-  const double need = voxels * 16.0;
+  const double need = voxels * (voxels > double(VoxelStorage::kCompactAboveVoxels) ? 8.0 : 16.0);
   const double have = double(availableMemoryBytes());
   if (voxels > 9.0e15 || (have > 0 && need > have))
     throw Error(where + ": dimensions " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +

@@ -8,6 +8,7 @@
 
 #include "core/util/memory.h"
 #include "core/volume/readers/scalar_type.h"
+#include "core/volume/voxel_storage.h"
 
 namespace kdswap {
 namespace {
@@ -41,7 +42,8 @@ VolumeSummary summarizeVolume(const VolumeSource& source, int bins) {
   s.voxels = std::uint64_t(s.info.voxelCount());
   const auto type = parseScalarType(s.info.type);
   s.storedBytes = s.voxels * (type ? scalarTypeSize(*type) : sizeof(float));
-  s.brickBytes = s.voxels * 16;
+  s.bytesPerVoxel = VoxelStorage::forVolume(s.info).bytesPerVoxel();
+  s.brickBytes = s.voxels * std::uint64_t(s.bytesPerVoxel);
   bins = std::max(bins, 1);
 
   const int slabDepth = int(std::clamp<std::int64_t>(kSlabVoxels / (std::int64_t(d.x) * d.y), 1, d.z));
@@ -88,7 +90,8 @@ std::string formatSummary(const VolumeSummary& s) {
   if (i.nonFinite > 0) out += "non-finite  " + std::to_string(i.nonFinite) + " NaN/Inf voxels, read as the minimum\n";
   out += "at minimum  " + percent(s.atMinimum, s.voxels) + " of voxels; exactly 0: " + percent(s.zeros, s.voxels) + "\n";
   out += "memory      " + formatBytes(s.storedBytes) + " as stored; " + formatBytes(s.brickBytes) +
-         " in bricks with gradients (16 bytes per voxel)\n";
+         " in bricks with gradients (" + std::to_string(s.bytesPerVoxel) + " bytes per voxel" +
+         (s.bytesPerVoxel == 8 ? ", compact 16-bit storage" : "") + ")\n";
   if (!i.preset.empty()) out += "preset      " + i.preset + "\n";
   out += "histogram   " + std::to_string(s.histogram.size()) + " bins over the range\n";
   const std::uint64_t peak = std::max<std::uint64_t>(1, *std::max_element(s.histogram.begin(), s.histogram.end()));

@@ -20,7 +20,8 @@ struct VolumeSummary {
   std::uint64_t atMinimum = 0;           //!< voxels equal to minValue (NaN/Inf read back as it)
   double mean = 0.0;
   std::uint64_t storedBytes = 0;         //!< voxels in their stored type
-  std::uint64_t brickBytes = 0;          //!< voxels with gradients in the bricks: 16 bytes each
+  std::uint64_t brickBytes = 0;          //!< voxels with gradients in the bricks (default storage)
+  int bytesPerVoxel = 16;                //!< in the bricks: 16 (float storage) or 8 (compact)
 };
 
 //! Reads `source` slab by slab (a few MiB each, slabs in parallel) and fills a summary with

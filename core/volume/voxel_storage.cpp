@@ -1,0 +1,72 @@
+// Voxel storage: the choice of format and the compact format's quantisation.
+#include "core/volume/voxel_storage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/error.h"
+#include "core/volume/volume_source.h"
+
+namespace kdswap {
+
+VoxelChoice parseVoxelChoice(const std::string& text, const std::string& what) {
+  if (text == "auto") return VoxelChoice::Auto;
+  if (text == "float") return VoxelChoice::Float;
+  if (text == "compact") return VoxelChoice::Compact;
+  throw Error(what + " \"" + text + "\": expected auto, float or compact");
+}
+
+const char* voxelChoiceName(VoxelChoice choice) {
+  switch (choice) {
+    case VoxelChoice::Float: return "float";
+    case VoxelChoice::Compact: return "compact";
+    case VoxelChoice::Auto: break;
+  }
+  return "auto";
+}
+
+VoxelStorage VoxelStorage::forVolume(const VolumeInfo& info, VoxelChoice choice) {
+  const bool compactOne =
+      choice == VoxelChoice::Compact || (choice == VoxelChoice::Auto && info.voxelCount() > kCompactAboveVoxels);
+  if (!compactOne) return VoxelStorage{};
+  const bool integerType = info.type == "int8" || info.type == "uint8" || info.type == "int16" ||
+                           info.type == "uint16" || info.type == "int32" || info.type == "uint32";
+  return compact(info.minValue, info.maxValue, info.spacing, integerType);
+}
+
+VoxelStorage VoxelStorage::compact(float minValue, float maxValue, const glm::vec3& spacing, bool integerData) {
+  VoxelStorage s;
+  s.format = VoxelFormat::Compact;
+  const double lo = minValue, span = double(maxValue) - double(minValue);
+  if (!(span > 0.0)) {
+    s.valueStep = 1.0f, s.valueOrigin = minValue;  // one value: every voxel stores 0
+  } else if (integerData && lo == std::floor(lo) && span == std::floor(span) && span <= 65535.0) {
+    // Whole numbers, each its own level, centred on 0: interpolated sums of small integers keep
+    // more of float's precision than sums near -32768 would.
+    s.valueStep = 1.0f, s.valueOrigin = float(lo + std::ceil(span / 2.0));
+  } else {
+    s.valueStep = float(span / 65535.0), s.valueOrigin = float(lo + 32768.0 * span / 65535.0);
+  }
+  // The largest gradient component stored values allow: a one-sided difference across the whole
+  // range over the smallest spacing (central differences are half that), one level of slack.
+  const double smallest = std::min({double(spacing.x), double(spacing.y), double(spacing.z)});
+  const double largest = (std::max(span, 0.0) + double(s.valueStep)) / (smallest > 0.0 ? smallest : 1.0);
+  s.gradientScale = float(32767.0 / largest);
+  return s;
+}
+
+std::int16_t VoxelStorage::quantiseValue(float v) const {
+  const float q = (v - valueOrigin) / valueStep;
+  if (!(q > -32768.0f)) return -32768;  // and NaN
+  if (q >= 32767.0f) return 32767;
+  return std::int16_t(std::lround(q));
+}
+
+std::int16_t VoxelStorage::quantiseGradient(float g) const {
+  const float q = g * gradientScale;
+  if (!(q > -32767.0f)) return q == q ? -32767 : 0;
+  if (q >= 32767.0f) return 32767;
+  return std::int16_t(std::lround(q));
+}
+
+}  // namespace kdswap
