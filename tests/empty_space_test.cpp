@@ -65,10 +65,13 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
     const TransferFunction tf = c.transfer == "threshold" ? threshold : loadTransferFunction(c.transfer);
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
     // The whole volume and a brick cut out of it (skipping works on the brick's own cells).
-    // Both sizes of empty-space cells (small volumes get 2^3, large ones 4^3: Brick::cellShiftFor).
+    // Both sizes of empty-space cells (small volumes get 2^3, large ones 4^3: Brick::cellShiftFor)
+    // and both voxel formats (compact cells hold the stored values' ranges).
     const VoxelBox cut{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)};
-    const Brick bricks[] = {wholeVolumeBrick(*volume, 1), test::brickOf(*volume, cut, 1), wholeVolumeBrick(*volume, 2),
-                            test::brickOf(*volume, cut, 2)};
+    const VoxelChoice compact = VoxelChoice::Compact;
+    const Brick bricks[] = {wholeVolumeBrick(*volume, 1),          test::brickOf(*volume, cut, 1),
+                            wholeVolumeBrick(*volume, 2),          test::brickOf(*volume, cut, 2),
+                            wholeVolumeBrick(*volume, 2, compact), test::brickOf(*volume, cut, 1, compact)};
     for (const Brick& brick : bricks)
       for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f}) {
         View view;
@@ -85,6 +88,7 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
         CAPTURE(azimuth);
         CAPTURE(brick.owned().lo.x);
         CAPTURE(brick.cellShift());
+        CAPTURE(brick.storage().compactFormat());
         // Samples are composited in groups of eight taken samples (FrontToBack::addEight), so
         // leaving out invisible ones regroups the rest: equal to rounding (seen: <= 3e-7), while a
         // visible sample left out would show far above that.

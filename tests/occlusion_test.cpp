@@ -187,9 +187,11 @@ TEST_CASE("occlusion bound: an opaque wall eight voxels thick is credited, where
 }
 
 TEST_CASE("occlusion map: stopping each single-node ray at its map index changes no pixel") {
-  for (const std::string data : {"block", "phantom:96"}) {
+  // Both voxel formats: with compact storage the summary holds the ranges of the stored values.
+  for (const std::string data : {"block", "phantom:96"})
+  for (const VoxelChoice voxels : {VoxelChoice::Float, VoxelChoice::Compact}) {
     auto volume = openData(data);
-    const Brick whole = wholeVolumeBrick(*volume);
+    const Brick whole = wholeVolumeBrick(*volume, 0, voxels);
     const VolumeInfo& info = volume->info();
     RenderSettings settings;
     settings.stepVoxels = 0.6f;
@@ -223,6 +225,7 @@ TEST_CASE("occlusion map: stopping each single-node ray at its map index changes
         }
       CAPTURE(data);
       CAPTURE(azimuth);
+      CAPTURE(whole.storage().compactFormat());
       CHECK(mismatches == 0);
       CHECK(indexMismatches == 0);
       CHECK(stopped.samples == plain.samples);  // the single-node ray never reaches its map index

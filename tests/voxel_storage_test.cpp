@@ -8,6 +8,7 @@
 #include <cstring>
 #include <random>
 
+#include "core/bench/quantised_source.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/voxel_storage.h"
@@ -26,18 +27,31 @@ double angleBetween(const glm::vec3& a, const glm::vec3& b) {
 }  // namespace
 
 TEST_CASE("compact storage keeps integer data exactly and float data to half a level") {
-  SUBCASE("uint16 data: step 1, every value of the range stored exactly") {
-    const VoxelStorage s = VoxelStorage::compact(100.0f, 4100.0f, glm::vec3(1.0f), true);
-    CHECK(s.valueStep == 1.0f);
-    for (int v = 100; v <= 4100; ++v) CHECK_EQ(s.value(s.quantiseValue(float(v))), float(v));
+  SUBCASE("8-bit data: every value on its own level, back to within float rounding") {
+    const VoxelStorage s = VoxelStorage::compact(0.0f, 255.0f, glm::vec3(1.0f));
+    for (int v = 0; v <= 255; ++v) {
+      CHECK(int(s.quantiseValue(float(v))) == v * 257 - 32768);  // 255 divides 65535: no rounding
+      CHECK(s.value(s.quantiseValue(float(v))) == doctest::Approx(float(v)).epsilon(1e-6));
+    }
   }
-  SUBCASE("uint16 data spanning the whole type: still exact") {
-    const VoxelStorage s = VoxelStorage::compact(0.0f, 65535.0f, glm::vec3(1.0f), true);
-    for (int v = 0; v <= 65535; v += 7) CHECK_EQ(s.value(s.quantiseValue(float(v))), float(v));
-    CHECK_EQ(s.value(s.quantiseValue(65535.0f)), 65535.0f);
+  SUBCASE("16-bit data spanning the type: every value on its own level") {
+    const VoxelStorage s = VoxelStorage::compact(0.0f, 65535.0f, glm::vec3(1.0f));
+    for (int v = 0; v <= 65535; v += 7) CHECK(int(s.quantiseValue(float(v))) == v - 32768);
+  }
+  SUBCASE("data typed uint8 but scaled to [0, 1] (quantised for a benchmark) keep their 256 levels") {
+    // The type name says nothing of the values: kdswap bench --quantise 8 keeps the float range.
+    VolumeInfo info;
+    info.dims = {8, 8, 8};
+    info.type = "uint8";
+    info.minValue = 0.0f, info.maxValue = 1.0f;
+    const VoxelStorage s = VoxelStorage::forVolume(info, VoxelChoice::Compact);
+    for (int k = 0; k <= 255; ++k) {
+      const float v = float(k) / 255.0f;
+      CHECK(std::fabs(s.value(s.quantiseValue(v)) - v) <= 0.5f * s.valueStep * 1.01f);
+    }
   }
   SUBCASE("float data: 65536 levels over the range, within half a level") {
-    const VoxelStorage s = VoxelStorage::compact(-2.5f, 7.25f, glm::vec3(1.0f), false);
+    const VoxelStorage s = VoxelStorage::compact(-2.5f, 7.25f, glm::vec3(1.0f));
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(-2.5f, 7.25f);
     float worst = 0.0f;
@@ -50,7 +64,7 @@ TEST_CASE("compact storage keeps integer data exactly and float data to half a l
     CHECK(s.value(s.quantiseValue(7.25f)) == doctest::Approx(7.25f).epsilon(1e-6));
   }
   SUBCASE("out of range and NaN are clamped, never wrapped") {
-    const VoxelStorage s = VoxelStorage::compact(0.0f, 1.0f, glm::vec3(1.0f), false);
+    const VoxelStorage s = VoxelStorage::compact(0.0f, 1.0f, glm::vec3(1.0f));
     CHECK(s.quantiseValue(5.0f) == 32767);
     CHECK(s.quantiseValue(-5.0f) == -32768);
     CHECK(s.quantiseValue(std::nanf("")) == -32768);
@@ -60,13 +74,13 @@ TEST_CASE("compact storage keeps integer data exactly and float data to half a l
   }
   SUBCASE("the steepest gradient the range allows fits 16 bits, at the smallest spacing") {
     const glm::vec3 spacing(0.5f, 2.0f, 3.2f);
-    const VoxelStorage s = VoxelStorage::compact(-10.0f, 30.0f, spacing, false);
+    const VoxelStorage s = VoxelStorage::compact(-10.0f, 30.0f, spacing);
     const float steepest = 40.0f / 0.5f;  // one-sided difference across the whole range
     CHECK(steepest * s.gradientScale <= 32767.0f);  // stored without clamping
     CHECK(std::abs(int(s.quantiseGradient(-steepest))) > 32000);  // and using the levels
   }
   SUBCASE("one value everywhere") {
-    const VoxelStorage s = VoxelStorage::compact(3.0f, 3.0f, glm::vec3(1.0f), false);
+    const VoxelStorage s = VoxelStorage::compact(3.0f, 3.0f, glm::vec3(1.0f));
     CHECK(s.value(s.quantiseValue(3.0f)) == 3.0f);
   }
 }
@@ -138,11 +152,11 @@ TEST_CASE("a compact brick rebuilt from its shipped values, or cut from the volu
 }
 
 TEST_CASE("compact interpolation reproduces a linear field, and agrees with the float interpolation") {
-  // f = 3x - 2y + 5z + 40: trilinear interpolation is exact for it; values are whole numbers.
+  // f = 3x - 2y + 5z + 40: trilinear interpolation is exact for it.
   auto volume = test::makeVolume({12, 10, 9}, [](int x, int y, int z) { return float(3 * x - 2 * y + 5 * z + 40); });
   const Brick whole = wholeVolumeBrick(*volume, 0, VoxelChoice::Float);
   const VolumeInfo& info = volume->info();
-  const VoxelStorage storage = VoxelStorage::compact(info.minValue, info.maxValue, info.spacing, true);
+  const VoxelStorage storage = VoxelStorage::compact(info.minValue, info.maxValue, info.spacing);
   const VoxelBox owned{glm::ivec3(0), info.dims - 1};
   std::vector<float> raw(std::size_t(info.voxelCount()));
   volume->read(VoxelBox{glm::ivec3(0), info.dims}, raw.data());
@@ -155,8 +169,9 @@ TEST_CASE("compact interpolation reproduces a linear field, and agrees with the 
     const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));
     const TrilinearCell::Lanes c = interpolateCompact(at, p, floor);
     const float value = c[0] * storage.valueStep + storage.valueOrigin;
-    CHECK(value == doctest::Approx(3.0f * p.x - 2.0f * p.y + 5.0f * p.z + 40.0f).epsilon(1e-5));
-    CHECK(value == doctest::Approx(TrilinearCell(whole, p).value()).epsilon(1e-5));
+    // Corners within half a level each, so the blend too; a level is 1/65535 of the range.
+    CHECK(std::fabs(value - (3.0f * p.x - 2.0f * p.y + 5.0f * p.z + 40.0f)) <= storage.valueStep);
+    CHECK(std::fabs(value - TrilinearCell(whole, p).value()) <= storage.valueStep);
     // Inside (away from the one-sided faces) the gradient is (3, -2, 5) everywhere.
     if (p.x >= 1.0f && p.x < 10.0f && p.y >= 1.0f && p.y < 8.0f && p.z >= 1.0f && p.z < 7.0f)
       CHECK(angleBetween(glm::vec3(c[1], c[2], c[3]), glm::vec3(3.0f, -2.0f, 5.0f)) < 1e-3);
@@ -198,15 +213,19 @@ TEST_CASE("under compact storage the distributed image equals the single-node im
 
 TEST_CASE("compact and float storage give images within a grey level of each other") {
   const TransferFunction tf = test::testTransfer();
-  for (const char* data : {"turbulence:48", "vessels:48", "phantom:48"}) {
-    auto volume = openDataset(data);
+  // The quantised phantom is what bench --targets renders: typed uint8, its values still in [0, 1].
+  for (const char* data : {"turbulence:48", "vessels:48", "phantom:48", "phantom:48 quantised to 8 bits"}) {
+    std::unique_ptr<VolumeSource> volume = std::string(data).find("quantised") != std::string::npos
+                                               ? std::make_unique<QuantisedSource>(openDataset("phantom:48"), 8)
+                                               : openDataset(data);
     const glm::vec2 range(volume->info().minValue, volume->info().maxValue);
     const Brick f = wholeVolumeBrick(*volume, 0, VoxelChoice::Float), c = wholeVolumeBrick(*volume, 0, VoxelChoice::Compact);
     View view;
     view.azimuthDeg = 30.0f, view.elevationDeg = 20.0f;
     RenderSettings settings;
-    const Image a = renderReference(f, view, 96, 96, tf, settings, range).image;
-    const Image b = renderReference(c, view, 96, 96, tf, settings, range).image;
+    const ReferenceResult fromFloat = renderReference(f, view, 96, 96, tf, settings, range);
+    const ReferenceResult fromCompact = renderReference(c, view, 96, 96, tf, settings, range);
+    const Image &a = fromFloat.image, &b = fromCompact.image;
     long far = 0, covered = 0;
     for (int y = 0; y < 96; ++y)
       for (int x = 0; x < 96; ++x) {
@@ -219,5 +238,7 @@ TEST_CASE("compact and float storage give images within a grey level of each oth
     CHECK(covered > 1000);             // the images show something
     CHECK(far * 200 <= covered);       // at most 0.5% of the pixels differ by more than a grey level
     CHECK(maxAbsDifference(a, b, a.rect()) < 0.05f);
+    // The same work: a sample count far off would mean the values changed.
+    CHECK(double(fromCompact.counters.samples) == doctest::Approx(double(fromFloat.counters.samples)).epsilon(0.01));
   }
 }

@@ -12,8 +12,9 @@
 namespace kdswap {
 
 struct RayCastFigure {
-  std::string dataType;  //!< "uint8", "uint16", "float32": the source data, before the float brick
+  std::string dataType;  //!< "uint8", "uint16", "float32": the source data, before the brick
   bool shaded = false;
+  std::string voxels = "float";  //!< the brick's storage: "float" or "compact" (voxel_storage.h)
   std::string march;     //!< marchName: which sample loop (ray_march.h) was measured
   double samplesPerSecond = 0;  //!< one thread (tbb::task_arena(1)), median of the repeats
   double samples = 0;           //!< per render

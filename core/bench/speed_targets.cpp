@@ -17,6 +17,7 @@
 #include "core/util/memory.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/reader.h"
+#include "core/volume/voxel_storage.h"
 
 namespace kdswap {
 namespace {
@@ -93,7 +94,10 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   const double budget = 1.25 * kVoxelBytes * 256.0 * 256.0 * 256.0;
   out.push_back({"peak RSS with P=64, 256^3 (<= 1.25 x volume + gradients, 16 B/voxel)",
                  gridCommand(phantomData, p64, o.frames) + "   (peak_rss_bytes in bench.json)", double(rss) / 1e6,
-                 budget / 1e6, "MB", false, !interrupted, "process peak (VmHWM), includes the program itself",
+                 budget / 1e6, "MB", false, !interrupted,
+                 "process peak (VmHWM), includes the program itself; bricks in " +
+                     std::string(VoxelStorage::forVolume(phantom.info()).compactFormat() ? "compact (8 B/voxel)" : "float (16 B/voxel)") +
+                     " storage",
                  /*firstRunOnly=*/true});
   if (stopped()) return out;
 

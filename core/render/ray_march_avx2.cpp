@@ -4,9 +4,12 @@
 // Each step is the scalar reference's operation (ray_march.cpp, sample_shader.h) in the same
 // order; nothing is fused (this file enables AVX2 only, not FMA, and the build compiles with
 // -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
-// bit. A sample's eight corner voxels are 4-float vectors (value, gradient), so interpolation runs
-// on 4 lanes per sample, as TrilinearCell does (two samples per register), and is then transposed
-// into one register per quantity; everything after it runs on eight samples per instruction.
+// bit. With float storage a sample's eight corner voxels are 4-float vectors (value, gradient), so
+// interpolation runs on 4 lanes per sample, as TrilinearCell does (two samples per register); with
+// compact storage each (y, z) pair of x corners is one 16-byte load of 16-bit integers, widened to
+// eight floats, as interpolateCompact sums them. Either is then transposed into one register per
+// quantity; everything after it runs on eight samples per instruction. The march is a template on
+// the voxel type, so each format gets its own code without a test per sample.
 #include "core/render/ray_march.h"
 
 #include <climits>

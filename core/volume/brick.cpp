@@ -68,9 +68,12 @@ Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spa
   strideY_ = std::size_t(s.x);
   strideZ_ = std::size_t(s.x) * s.y;
   const bool compact = storage_.compactFormat();
-  if (compact)  // from here on the brick's values are the ones it stores
-    for (float& v : raw) v = storage_.value(storage_.quantiseValue(v));
-  (compact ? compact_.resize(std::size_t(stored_.count())) : voxels_.resize(std::size_t(stored_.count())));
+  if (compact) {
+    for (float& v : raw) v = storage_.value(storage_.quantiseValue(v));  // from here on: the stored values
+    compact_.resize(std::size_t(stored_.count()));
+  } else {
+    voxels_.resize(std::size_t(stored_.count()));
+  }
   // Every kept voxel gets its gradient; the outer ghost layer of `raw` only feeds them.
   for (int z = stored_.lo.z; z < stored_.hi.z; ++z)
     for (int y = stored_.lo.y; y < stored_.hi.y; ++y)

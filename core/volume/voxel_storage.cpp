@@ -29,24 +29,20 @@ VoxelStorage VoxelStorage::forVolume(const VolumeInfo& info, VoxelChoice choice)
   const bool compactOne =
       choice == VoxelChoice::Compact || (choice == VoxelChoice::Auto && info.voxelCount() > kCompactAboveVoxels);
   if (!compactOne) return VoxelStorage{};
-  const bool integerType = info.type == "int8" || info.type == "uint8" || info.type == "int16" ||
-                           info.type == "uint16" || info.type == "int32" || info.type == "uint32";
-  return compact(info.minValue, info.maxValue, info.spacing, integerType);
+  return compact(info.minValue, info.maxValue, info.spacing);
 }
 
-VoxelStorage VoxelStorage::compact(float minValue, float maxValue, const glm::vec3& spacing, bool integerData) {
+VoxelStorage VoxelStorage::compact(float minValue, float maxValue, const glm::vec3& spacing) {
   VoxelStorage s;
   s.format = VoxelFormat::Compact;
   const double lo = minValue, span = double(maxValue) - double(minValue);
-  if (!(span > 0.0)) {
+  // 65536 levels over the range, whatever the data's type says: a type name does not prove the
+  // values are whole numbers (data quantised for a benchmark keep their float range). 8-bit data
+  // land exactly on levels (255 divides 65535), as do 16-bit data spanning their whole type.
+  if (!(span > 0.0))
     s.valueStep = 1.0f, s.valueOrigin = minValue;  // one value: every voxel stores 0
-  } else if (integerData && lo == std::floor(lo) && span == std::floor(span) && span <= 65535.0) {
-    // Whole numbers, each its own level, centred on 0: interpolated sums of small integers keep
-    // more of float's precision than sums near -32768 would.
-    s.valueStep = 1.0f, s.valueOrigin = float(lo + std::ceil(span / 2.0));
-  } else {
+  else
     s.valueStep = float(span / 65535.0), s.valueOrigin = float(lo + 32768.0 * span / 65535.0);
-  }
   // The largest gradient component stored values allow: a one-sided difference across the whole
   // range over the smallest spacing (central differences are half that), one level of slack.
   const double smallest = std::min({double(spacing.x), double(spacing.y), double(spacing.z)});

@@ -36,9 +36,8 @@ struct VoxelStorage {
   static constexpr std::int64_t kCompactAboveVoxels = std::int64_t(1) << 23;
 
   VoxelFormat format = VoxelFormat::Float;
-  //! Compact: stored value q stands for q * valueStep + valueOrigin. Integer data whose range
-  //! spans at most 65535 get step 1 (exact), centred on 0; other data 65536 levels over the
-  //! volume's range.
+  //! Compact: stored value q stands for q * valueStep + valueOrigin: 65536 levels over the
+  //! volume's range (8-bit data, and 16-bit data spanning their type, fall exactly on levels).
   float valueOrigin = 0.0f, valueStep = 1.0f;
   //! Compact: a stored gradient component is the gradient (value per world unit) times this,
   //! rounded. Chosen so the largest gradient the range allows fits; shading reads only the
@@ -47,9 +46,8 @@ struct VoxelStorage {
 
   //! The storage every brick of `info`'s volume uses under `choice`.
   static VoxelStorage forVolume(const VolumeInfo& info, VoxelChoice choice = VoxelChoice::Auto);
-  //! Compact storage for values in [minValue, maxValue] (`integerData`: whole numbers) and voxel
-  //! `spacing`.
-  static VoxelStorage compact(float minValue, float maxValue, const glm::vec3& spacing, bool integerData);
+  //! Compact storage for values in [minValue, maxValue] and voxel `spacing`.
+  static VoxelStorage compact(float minValue, float maxValue, const glm::vec3& spacing);
 
   bool compactFormat() const { return format == VoxelFormat::Compact; }
   //! The stored integer nearest to v (clamped to 16 bits; NaN to the lowest level).
