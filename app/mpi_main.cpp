@@ -54,8 +54,9 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
   if (o.verify) {
     // The reference reads the whole volume, on rank 0 only.
     const FrameRequest& r = scene.request;
-    const ReferenceResult ref = renderReference(wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels), r.view, r.width, r.height, r.transfer,
-                                                r.settings, resolveValueRange(r.settings, scene.source->info()));
+    const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
+    const ReferenceResult ref = renderReference(whole, r.view, r.width, r.height, r.transfer, r.settings,
+                                                resolveValueRange(r.settings, scene.source->info()));
     const float diff = maxAbsDifference(frame.image, ref.image, frame.image.rect());
     const float ert = r.settings.earlyTermination;
     const float tolerance = ert < 1.0f ? kVerifyTolerance + (1.0f - ert) : kVerifyTolerance;

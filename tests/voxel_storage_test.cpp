@@ -219,7 +219,8 @@ TEST_CASE("compact and float storage give images within a grey level of each oth
                                                ? std::make_unique<QuantisedSource>(openDataset("phantom:48"), 8)
                                                : openDataset(data);
     const glm::vec2 range(volume->info().minValue, volume->info().maxValue);
-    const Brick f = wholeVolumeBrick(*volume, 0, VoxelChoice::Float), c = wholeVolumeBrick(*volume, 0, VoxelChoice::Compact);
+    const Brick f = wholeVolumeBrick(*volume, 0, VoxelChoice::Float);
+    const Brick c = wholeVolumeBrick(*volume, 0, VoxelChoice::Compact);
     View view;
     view.azimuthDeg = 30.0f, view.elevationDeg = 20.0f;
     RenderSettings settings;

@@ -95,8 +95,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   out.push_back({"peak RSS with P=64, 256^3 (<= 1.25 x volume + gradients, 16 B/voxel)",
                  gridCommand(phantomData, p64, o.frames) + "   (peak_rss_bytes in bench.json)", double(rss) / 1e6,
                  budget / 1e6, "MB", false, !interrupted,
-                 "process peak (VmHWM), includes the program itself; bricks in " +
-                     std::string(VoxelStorage::forVolume(phantom.info()).compactFormat() ? "compact (8 B/voxel)" : "float (16 B/voxel)") +
+                 std::string("process peak (VmHWM), includes the program itself; bricks in ") +
+                     (VoxelStorage::forVolume(phantom.info()).compactFormat() ? "compact (8 B/voxel)" : "float (16 B/voxel)") +
                      " storage",
                  /*firstRunOnly=*/true});
   if (stopped()) return out;

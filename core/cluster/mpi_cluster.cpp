@@ -68,7 +68,8 @@ NodeReport reportFromJson(const std::string& text, int node) {
 
 //! Reads node `node`'s brick straight from the source: only the voxels it stores (owned box plus
 //! the replicated and ghost layers), as distributeBricks + receiveBrick would have given it.
-void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdTree& tree, const VoxelStorage& storage) {
+void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdTree& tree,
+               const VoxelStorage& storage) {
   const VolumeInfo& info = source.info();
   const VoxelBox& owned = tree.brick(node);
   const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);

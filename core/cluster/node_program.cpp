@@ -96,7 +96,8 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   node.rank = comm.rank();
   if (m.header.size() == 10) {
     const int piece = int(m.header[9]);
-    node.pieces.insert_or_assign(piece, Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes, 0, storage));
+    node.pieces.insert_or_assign(piece,
+                                 Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes, 0, storage));
     node.pieceEmptySpace.erase(piece);
   } else {
     node.brick = Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::No, 0, storage);
@@ -121,7 +122,8 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
   const int rank = comm.rank();
   for (auto [brick, dest] : s.ships[std::size_t(rank)]) {
     const Brick& b = node.pieces.at(brick);
-    comm.send(dest, kBrickTag, brickMessage(b.owned(), b.volumeDims(), b.spacing(), b.storage(), b.storedValues(), brick));
+    comm.send(dest, kBrickTag,
+              brickMessage(b.owned(), b.volumeDims(), b.spacing(), b.storage(), b.storedValues(), brick));
   }
   for (int i = 0; i < s.receives[std::size_t(rank)]; ++i) receiveBrick(node, comm, Mailbox::kAnySource);
 

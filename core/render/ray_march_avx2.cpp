@@ -190,7 +190,8 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m25
     // per quantity with the samples in order.
     __m256 t[4];
     for (int j = 0; j < 4; ++j)
-      t[j] = interpolatePair(corner[j], corner[j + 4], sy, sz, w, _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4));
+      t[j] = interpolatePair(corner[j], corner[j + 4], sy, sz, w,
+                             _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4));
     transposeHalves(t, q);
   }
   const __m256 value = q[0], gradX = q[1], gradY = q[2], gradZ = q[3];
@@ -577,7 +578,9 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
           _mm256_blendv_ps(_mm256_castsi256_ps(offset), _mm256_castsi256_ps(waiting.offset), keep));
       waiting.size += count;
       if (waiting.size >= kLanes) {
-        if (shadeAndComposite(m, s, voxelsOf<VoxelT>(m), waiting.x, waiting.y, waiting.z, waiting.offset, result, samples)) return;
+        if (shadeAndComposite(m, s, voxelsOf<VoxelT>(m), waiting.x, waiting.y, waiting.z, waiting.offset, result,
+                              samples))
+          return;
         waiting.size -= kLanes;
         waiting.x = x, waiting.y = y, waiting.z = z, waiting.offset = offset;  // the overflow, at the front
       }

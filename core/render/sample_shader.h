@@ -53,8 +53,8 @@ inline ShadedSample shadeInterpolated(const ShadingParameters& params, const glm
 }
 
 //! Sample at p (voxel coordinates, inside the brick's owned box; floor = (int) p), float storage.
-inline ShadedSample shadeSample(const ShadingParameters& params, const glm::vec3& toLight, const VoxelAddressing& voxels,
-                                const glm::vec3& p, const glm::ivec3& floor) {
+inline ShadedSample shadeSample(const ShadingParameters& params, const glm::vec3& toLight,
+                                const VoxelAddressing& voxels, const glm::vec3& p, const glm::ivec3& floor) {
   return shadeInterpolated(params, toLight, TrilinearCell(voxels, p, floor).interpolate());
 }
 

@@ -64,7 +64,8 @@ class Brick {
   const CompactVoxel& compactVoxel(int x, int y, int z) const { return compact_[keptIndex(x, y, z)]; }
   //! The stored value of kept voxel (x, y, z), either format.
   float valueAt(int x, int y, int z) const {
-    return storage_.compactFormat() ? storage_.value(compact_[keptIndex(x, y, z)].value) : voxels_[keptIndex(x, y, z)].value;
+    const std::size_t i = keptIndex(x, y, z);
+    return storage_.compactFormat() ? storage_.value(compact_[i].value) : voxels_[i].value;
   }
   const Voxel* voxelData() const { return voxels_.data(); }            //!< null for compact storage
   const CompactVoxel* compactData() const { return compact_.data(); }  //!< null for float storage
@@ -122,7 +123,8 @@ class Brick {
 
   void buildCells();
   std::size_t keptIndex(int x, int y, int z) const {
-    return std::size_t(z - stored_.lo.z) * strideZ_ + std::size_t(y - stored_.lo.y) * strideY_ + std::size_t(x - stored_.lo.x);
+    return std::size_t(z - stored_.lo.z) * strideZ_ + std::size_t(y - stored_.lo.y) * strideY_ +
+           std::size_t(x - stored_.lo.x);
   }
 };
 
