@@ -37,8 +37,9 @@ VoxelStorage VoxelStorage::compact(float minValue, float maxValue, const glm::ve
   s.format = VoxelFormat::Compact;
   const double lo = minValue, span = double(maxValue) - double(minValue);
   // 65536 levels over the range, whatever the data's type says: a type name does not prove the
-  // values are whole numbers (data quantised for a benchmark keep their float range). 8-bit data
-  // land exactly on levels (255 divides 65535), as do 16-bit data spanning their whole type.
+  // values are whole numbers (data quantised for a benchmark keep their float range). Integer data
+  // spanning 255 or 65535 units land exactly on levels (255 divides 65535); others lie within half a
+  // level, 1/131070 of the range.
   if (!(span > 0.0))
     s.valueStep = 1.0f, s.valueOrigin = minValue;  // one value: every voxel stores 0
   else

@@ -1,10 +1,11 @@
 // How a brick stores its voxels (value and central-difference gradient). Float: four floats, 16
 // bytes, as read. Compact: four signed 16-bit integers, 8 bytes: half the memory and half the
 // memory traffic per sample, which pays where a volume is too large to stay in cache (measured:
-// phantom 256^3 at P = 64 ~12% faster), while on cache-sized volumes widening the integers costs
-// more than the traffic saves (default scene ~5% slower). So the default picks Compact only above
-// 2^23 voxels. Every brick of a volume must store alike, or split rays would not equal whole ones:
-// the choice and its quantisation come from the volume (VolumeInfo), never from a brick's own data.
+// phantom 256^3 at P = 64 ~7% faster), while on cache-sized volumes widening the integers costs
+// more than the traffic saves (default scene ~5% slower in a probe). So the default picks Compact
+// only above 2^23 voxels. Every brick of a volume must store alike, or split rays would not equal
+// whole ones: the choice and its quantisation come from the volume (VolumeInfo), never from a
+// brick's own data.
 #pragma once
 
 #include <cstdint>
@@ -37,7 +38,7 @@ struct VoxelStorage {
 
   VoxelFormat format = VoxelFormat::Float;
   //! Compact: stored value q stands for q * valueStep + valueOrigin: 65536 levels over the
-  //! volume's range (8-bit data, and 16-bit data spanning their type, fall exactly on levels).
+  //! volume's range (integer data spanning 0..255 or 0..65535 fall exactly on levels).
   float valueOrigin = 0.0f, valueStep = 1.0f;
   //! Compact: a stored gradient component is the gradient (value per world unit) times this,
   //! rounded. Chosen so the largest gradient the range allows fits; shading reads only the
