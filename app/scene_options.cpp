@@ -8,7 +8,6 @@
 #include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
-#include "core/util/memory.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/reader.h"
 #include "core/volume/respaced_source.h"
@@ -201,13 +200,8 @@ Scene buildScene(const SceneOptions& o) {
   if (o.bricksPerNode < 1 || o.bricksPerNode > 64) throw Error("--bricks-per-node must be from 1 to 64");
   c.bricksPerNode = o.bricksPerNode;
   c.voxels = parseVoxelChoice(o.voxels);
-  if (c.voxels == VoxelChoice::Float) {  // opening the volume assumed the default storage
-    const double need = double(info.voxelCount()) * 16.0, have = double(availableMemoryBytes());
-    if (have > 0 && need > have)
-      throw Error("--voxels float: " + info.name + " needs " + formatBytes(std::uint64_t(need)) +
-                  " for float voxels and gradients, but only " + formatBytes(std::uint64_t(have)) +
-                  " is available (--voxels compact takes half)");
-  }
+  if (c.voxels == VoxelChoice::Float)  // opening the volume assumed the default storage
+    checkBrickMemory(info, 16, "--voxels float: " + info.name, "--voxels compact takes half");
   c.balanceTransfer = r.transfer;
   c.balanceRange = resolveValueRange(r.settings, info);
   if (!o.speeds.empty()) {

@@ -96,18 +96,15 @@ std::vector<RayCastFigure> measureRayCasting(const MicroOptions& o) {
     marches.push_back(avx2MarchFunction());
   if (marches[0] != &marchScalar) marches.push_back(&marchScalar);
   std::vector<RayCastFigure> out;
-  for (MarchFunction march : marches)
+  auto rows = [&](MarchFunction march, VoxelChoice voxels) {  // shaded and unshaded, each data type
     for (bool shaded : {true, false}) {
-      out.push_back(castOnOneCore(as8, "uint8", shaded, march, VoxelChoice::Float, o));
-      out.push_back(castOnOneCore(as16, "uint16", shaded, march, VoxelChoice::Float, o));
-      out.push_back(castOnOneCore(*asFloat, "float32", shaded, march, VoxelChoice::Float, o));
+      out.push_back(castOnOneCore(as8, "uint8", shaded, march, voxels, o));
+      out.push_back(castOnOneCore(as16, "uint16", shaded, march, voxels, o));
+      out.push_back(castOnOneCore(*asFloat, "float32", shaded, march, voxels, o));
     }
-  // Compact storage (large volumes' default), with the march renders use.
-  for (bool shaded : {true, false}) {
-    out.push_back(castOnOneCore(as8, "uint8", shaded, marches[0], VoxelChoice::Compact, o));
-    out.push_back(castOnOneCore(as16, "uint16", shaded, marches[0], VoxelChoice::Compact, o));
-    out.push_back(castOnOneCore(*asFloat, "float32", shaded, marches[0], VoxelChoice::Compact, o));
-  }
+  };
+  for (MarchFunction march : marches) rows(march, VoxelChoice::Float);
+  rows(marches[0], VoxelChoice::Compact);  // large volumes' default, with the march renders use
   return out;
 }
 

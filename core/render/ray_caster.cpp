@@ -111,11 +111,8 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
   ShadingParameters& shading = march_.shading;
   shading.table = &table_;
-  shading.scale = scale_, shading.bias = bias_;
-  if (brick.storage().compactFormat()) {  // the shader interpolates stored integers q = (value - origin) / step
-    const VoxelStorage& st = brick.storage();
-    shading.scale = scale_ * st.valueStep, shading.bias = scale_ * st.valueOrigin + bias_;
-  }
+  const glm::vec2 stored = brick.storage().storedScaleBias(scale_, bias_);  // the shader reads stored values
+  shading.scale = stored.x, shading.bias = stored.y;
   shading.shading = settings.shading;
   shading.ambient = settings.ambient, shading.diffuse = settings.diffuse, shading.specular = settings.specular;
   shading.specularTable = specular_.data();

@@ -19,15 +19,20 @@ void validateVolumeInfo(const VolumeInfo& info, const std::string& where) {
     if (!(std::isfinite(info.spacing[a]) && info.spacing[a] > 0.0f))
       throw Error(where + ": spacing along axis " + std::to_string(a) + " must be a positive number");
   }
-  // Voxels plus gradients take 16 bytes each in the bricks (value + 3 gradient components), 8 in
-  // the compact storage large volumes get by default (a user asking for floats is checked again).
+  // The storage the volume gets by default (a user asking for floats is checked again).
+  checkBrickMemory(info, VoxelStorage::forVolume(info).bytesPerVoxel(), where);
+}
+
+void checkBrickMemory(const VolumeInfo& info, int bytesPerVoxel, const std::string& where, const std::string& hint) {
+  const glm::ivec3& d = info.dims;
   const double voxels = double(d.x) * double(d.y) * double(d.z);
-  const double need = voxels * (voxels > double(VoxelStorage::kCompactAboveVoxels) ? 8.0 : 16.0);
+  const double need = voxels * double(bytesPerVoxel);
   const double have = double(availableMemoryBytes());
   if (voxels > 9.0e15 || (have > 0 && need > have))
     throw Error(where + ": dimensions " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
                 std::to_string(d.z) + " need " + formatBytes(std::uint64_t(std::min(need, 1.8e19))) +
-                " for voxels and gradients, but only " + formatBytes(std::uint64_t(have)) + " is available");
+                " for voxels and gradients, but only " + formatBytes(std::uint64_t(have)) + " is available" +
+                (hint.empty() ? "" : " (" + hint + ")"));
 }
 
 }  // namespace kdswap

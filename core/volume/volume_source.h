@@ -39,5 +39,9 @@ class VolumeSource {
 //! Checks dims and spacing a reader found; throws kdswap::Error naming `where`. Also refuses a
 //! volume whose voxels and gradients would not fit in available memory, before any allocation.
 void validateVolumeInfo(const VolumeInfo& info, const std::string& where);
+//! Refuses, naming `where`, a volume whose bricks at `bytesPerVoxel` (value and gradient: 16 as
+//! floats, 8 compact) would not fit in available memory; `hint` ends the message if not empty.
+void checkBrickMemory(const VolumeInfo& info, int bytesPerVoxel, const std::string& where,
+                      const std::string& hint = "");
 
 }  // namespace kdswap

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace kdswap {
@@ -54,6 +55,12 @@ struct VoxelStorage {
   //! The stored integer nearest to v (clamped to 16 bits; NaN to the lowest level).
   std::int16_t quantiseValue(float v) const;
   float value(std::int16_t q) const { return float(q) * valueStep + valueOrigin; }
+  //! The mapping of stored values to [0, 1] (what the shader interpolates) from the mapping of
+  //! values, normalised = value * scale + bias: unchanged for float storage, folded with the
+  //! quantisation for compact.
+  glm::vec2 storedScaleBias(float scale, float bias) const {
+    return compactFormat() ? glm::vec2(scale * valueStep, scale * valueOrigin + bias) : glm::vec2(scale, bias);
+  }
   std::int16_t quantiseGradient(float g) const;
   //! 8 or 16.
   int bytesPerVoxel() const { return compactFormat() ? 8 : 16; }
