@@ -19,8 +19,10 @@ void validateVolumeInfo(const VolumeInfo& info, const std::string& where) {
     if (!(std::isfinite(info.spacing[a]) && info.spacing[a] > 0.0f))
       throw Error(where + ": spacing along axis " + std::to_string(a) + " must be a positive number");
   }
-  // The storage the volume gets by default (a user asking for floats is checked again).
-  checkBrickMemory(info, VoxelStorage::forVolume(info).bytesPerVoxel(), where);
+  // The storage the volume gets by default (a user asking for floats is checked again); counted in
+  // double, as absurd dimensions overflow 64-bit integers (VolumeInfo::voxelCount).
+  const double voxels = double(d.x) * double(d.y) * double(d.z);
+  checkBrickMemory(info, voxels > double(VoxelStorage::kCompactAboveVoxels) ? 8 : 16, where);
 }
 
 void checkBrickMemory(const VolumeInfo& info, int bytesPerVoxel, const std::string& where, const std::string& hint) {
