@@ -78,6 +78,8 @@ TEST_CASE("occlusion bound: every ray it culls is one the single-node ray ends b
     }
     const OcclusionGrid grid(fromParts, table, scale, bias, stopAt);
     REQUIRE(grid.active());
+    CHECK(fromParts.fineBlock == fromWhole.fineBlock);
+    if (data == "phantom:96") CHECK(grid.fineBlocks() > 0);  // its skull is walked voxel by voxel
 
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -112,6 +114,7 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get
       const TransferTable table(loadTransferFunction("grayscale"), step);
       const OcclusionGrid grid(CellRangeGrid::fromBricks(dims, {&whole}), table, map.x, map.y, 0.95f);
       REQUIRE(grid.active());
+      if (data != "turbulence:96") CHECK(grid.fineBlocks() > 0);  // walks through one-voxel cells too
       // Bundles of nearly parallel rays (as a row of pixels), axis-parallel ones, rays that miss and
       // rays from inside.
       std::mt19937 rng(11);
@@ -183,6 +186,44 @@ TEST_CASE("occlusion bound: an opaque wall eight voxels thick is credited, where
     CHECK((float(k) + 0.25f) * step <= float(wallLo + 8));
     // And the bound is sound: the single-node ray's samples before k do reach the opacity.
     CHECK(opacityBefore(whole, table, map.x, map.y, o, d, k, step, 0.25f) >= 0.95f);
+  }
+}
+
+TEST_CASE("occlusion bound: a wall four voxels thick, filling no cell, is credited voxel by voxel") {
+  // A 4^3 cell's samples touch five voxels per axis, so a four-voxel wall (the phantom's skull is
+  // 3.5) fills no cell at any offset; the one-voxel cells of the cells it crosses must prove it.
+  for (const int wallLo : {16, 17, 18, 19}) {
+    auto volume = test::makeVolume(glm::ivec3(48, 40, 40), [wallLo](int x, int, int) {
+      return x >= wallLo && x < wallLo + 4 ? 1.0f : 0.0f;
+    });
+    const Brick whole = wholeVolumeBrick(*volume);
+    const glm::ivec3 dims = volume->info().dims;
+    const float step = 0.5f;
+    const TransferTable table(loadTransferFunction("grayscale"), step);
+    const glm::vec2 map = normalisingScaleBias(resolveValueRange(RenderSettings{}, volume->info()));
+    const CellRangeGrid cells = CellRangeGrid::fromBricks(dims, {&whole});
+    // Cut by bricks (at x = 18, inside some of the walls' cells), the summary is the same.
+    const Brick left = test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(18, dims.y - 1, dims.z - 1)});
+    const Brick right = test::brickOf(*volume, VoxelBox{glm::ivec3(18, 0, 0), dims - 1});
+    const CellRangeGrid cut = CellRangeGrid::fromBricks(dims, {&left, &right});
+    CHECK(cut.fineBlock == cells.fineBlock);
+    REQUIRE(cut.fine.size() == cells.fine.size());
+    for (std::size_t i = 0; i < cells.fine.size(); ++i) {
+      CHECK(cut.fine[i].lo == cells.fine[i].lo);
+      CHECK(cut.fine[i].hi == cells.fine[i].hi);
+    }
+    const OcclusionGrid grid(cut, table, map.x, map.y, 0.95f);
+    REQUIRE(grid.active());
+    CHECK(grid.fineBlocks() > 0);
+    // Along +x, and obliquely: each ray is proven to end inside the wall or just past it, soundly.
+    for (const glm::vec3 d : {glm::vec3(1.0f, 0.0f, 0.0f), glm::normalize(glm::vec3(1.0f, 0.37f, -0.21f))}) {
+      const glm::vec3 o = glm::vec3(0.0f, 13.3f, 26.6f) - d * 0.5f;
+      const long k = grid.occludedFrom(o, d, step, 0.25f);
+      CAPTURE(wallLo);
+      REQUIRE(k != OcclusionGrid::kNever);
+      CHECK(o.x + d.x * (float(k) + 0.25f) * step <= float(wallLo + 4));
+      CHECK(opacityBefore(whole, table, map.x, map.y, o, d, k, step, 0.25f) >= 0.95f);
+    }
   }
 }
 

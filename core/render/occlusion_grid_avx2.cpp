@@ -23,6 +23,8 @@ constexpr int kLanes = 8;
 struct LaneEnds {
   bool reached[kLanes] = {};
   alignas(32) float sum[kLanes], depth[kLanes], first[kLanes], samples[kLanes];
+  bool reachedFine[kLanes] = {};  //!< reached inside a cell's one-voxel walk: the answer is known
+  long answer[kLanes];
 };
 
 struct Lanes {
@@ -30,6 +32,7 @@ struct Lanes {
   alignas(32) float deltaX[kLanes], deltaY[kLanes], deltaZ[kLanes], phase[kLanes];
   alignas(32) int cx[kLanes], cy[kLanes], cz[kLanes], dirX[kLanes], dirY[kLanes], dirZ[kLanes], index[kLanes];
   alignas(32) int active[kLanes];
+  OcclusionGrid::RayLine ray[kLanes];
 };
 
 KDSWAP_AVX2 inline __m256 asFloat(__m256i v) { return _mm256_castsi256_ps(v); }
@@ -37,8 +40,8 @@ KDSWAP_AVX2 inline __m256i asInt(__m256 v) { return _mm256_castps_si256(v); }
 KDSWAP_AVX2 inline __m256 load(const float* p) { return _mm256_load_ps(p); }
 KDSWAP_AVX2 inline __m256i load(const int* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
 
-KDSWAP_AVX2 void walkEight(const float* depthOf, int countX, int countY, int countZ, float threshold, float step,
-                           const Lanes& in, LaneEnds& ends) {
+KDSWAP_AVX2 void walkEight(const OcclusionGrid& grid, const float* depthOf, int countX, int countY, int countZ,
+                           float threshold, float step, const Lanes& in, LaneEnds& ends) {
   __m256 t = load(in.t), exitX = load(in.exitX), exitY = load(in.exitY), exitZ = load(in.exitZ);
   const __m256 t1 = load(in.t1), deltaX = load(in.deltaX), deltaY = load(in.deltaY), deltaZ = load(in.deltaZ);
   const __m256 phase = load(in.phase);
@@ -82,6 +85,23 @@ KDSWAP_AVX2 void walkEight(const float* depthOf, int countX, int countY, int cou
         if (bits & (1 << j)) ends.reached[j] = true, ends.sum[j] = s[j], ends.depth[j] = d[j], ends.first[j] = f[j],
                                                   ends.samples[j] = n[j];
       active = _mm256_andnot_si256(asInt(reached), active);
+    }
+    // Lanes in cells with one-voxel depths walk those one lane at a time (the scalar walk's code).
+    if (const int fine = _mm256_movemask_ps(_mm256_and_ps(asFloat(active), _mm256_cmp_ps(depth, zero, _CMP_LT_OQ)))) {
+      alignas(32) float s[kLanes], d[kLanes], from[kLanes], to[kLanes], ph[kLanes];
+      alignas(32) int x[kLanes], y[kLanes], z[kLanes], stop[kLanes] = {};
+      _mm256_store_ps(s, sum), _mm256_store_ps(d, depth), _mm256_store_ps(from, t), _mm256_store_ps(to, segmentEnd);
+      _mm256_store_ps(ph, phase);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(x), cx), _mm256_store_si256(reinterpret_cast<__m256i*>(y), cy),
+          _mm256_store_si256(reinterpret_cast<__m256i*>(z), cz);
+      for (int j = 0; j < kLanes; ++j)
+        if (fine & (1 << j) && grid.walkFine(in.ray[j], x[j], y[j], z[j], OcclusionGrid::blockOf(d[j]), from[j], to[j],
+                                             step, ph[j], s[j], ends.answer[j])) {
+          ends.reachedFine[j] = true;
+          stop[j] = -1;
+        }
+      sum = _mm256_load_ps(s);
+      active = _mm256_andnot_si256(load(stop), active);
     }
     sum = _mm256_blendv_ps(sum, added, counted);
     // The walk's end, then a step across the crossed face (a step off the grid ends it too).
@@ -175,17 +195,21 @@ KDSWAP_AVX2 int startEight(const StartConstants& c, const __m256* o, const __m25
   for (int a = 0; a < 3; ++a) _mm256_store_si256(ints[a], cell[a]), _mm256_store_si256(ints[3 + a], dir[a]);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.index), _mm256_and_si256(index, keep));
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.active), keep);
+  alignas(32) float ray[6][kLanes];
+  for (int a = 0; a < 3; ++a) _mm256_store_ps(ray[a], o[a]), _mm256_store_ps(ray[3 + a], d[a]);
+  for (int j = 0; j < kLanes; ++j)
+    out.ray[j] = OcclusionGrid::RayLine{ray[0][j], ray[1][j], ray[2][j], ray[3][j], ray[4][j], ray[5][j]};
   return started;
 }
 
 //! Starts (startEight) and walks (walkEight) eight rays; returns the lanes that started.
-KDSWAP_AVX2 int startAndWalkEight(const StartConstants& c, const float* depth, float threshold, const VoxelRays8& rays,
-                                  float step, LaneEnds& ends) {
+KDSWAP_AVX2 int startAndWalkEight(const OcclusionGrid& grid, const StartConstants& c, const float* depth, float threshold,
+                                  const VoxelRays8& rays, float step, LaneEnds& ends) {
   const __m256 o[3] = {_mm256_load_ps(rays.ox), _mm256_load_ps(rays.oy), _mm256_load_ps(rays.oz)};
   const __m256 d[3] = {_mm256_load_ps(rays.dx), _mm256_load_ps(rays.dy), _mm256_load_ps(rays.dz)};
   Lanes lanes;
   const int started = startEight(c, o, d, _mm256_load_ps(rays.phase), step, lanes);
-  if (started != 0) walkEight(depth, c.count[0], c.count[1], c.count[2], threshold, step, lanes, ends);
+  if (started != 0) walkEight(grid, depth, c.count[0], c.count[1], c.count[2], threshold, step, lanes, ends);
   return started;
 }
 
@@ -197,10 +221,12 @@ bool OcclusionGrid::walkRays8(const VoxelRays8& rays, float step, long* out) con
   const StartConstants constants{{depthLo_.x, depthLo_.y, depthLo_.z}, {depthHi_.x, depthHi_.y, depthHi_.z},
                                  {count_.x, count_.y, count_.z}};
   LaneEnds ends;
-  const int started = startAndWalkEight(constants, depth_.data(), threshold_, rays, step, ends);
+  const int started = startAndWalkEight(*this, constants, depth_.data(), threshold_, rays, step, ends);
   for (int j = 0; j < kLanes; ++j)
-    out[j] = (started >> j & 1) && ends.reached[j] ? reachedAt(ends.sum[j], ends.depth[j], ends.first[j], ends.samples[j])
-                                                   : kNever;
+    out[j] = !(started >> j & 1)  ? kNever
+             : ends.reachedFine[j] ? ends.answer[j]
+             : ends.reached[j]     ? reachedAt(ends.sum[j], ends.depth[j], ends.first[j], ends.samples[j])
+                                   : kNever;
   return true;
 }
 
