@@ -151,49 +151,60 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
 
 void OcclusionGrid::useFineCells(const CellRangeGrid& cells, const TransferTable& table, float scale, float bias) {
   // One-voxel depths travel as 8-bit codes (a block is one cache line): code q stands for
-  // depthOfCode_[q], geometric from 1e-4 of the threshold up to the threshold, each rounded down to
-  // a code whose depth does not exceed it (a lower bound stays one).
+  // depthOfCode_[q], geometric from 1e-4 of the threshold up to the threshold. A voxel-cell gets
+  // the highest code whose opacity, alphaOfCode[q] (rounded up), its smallest opacity reaches, so
+  // the code's depth never exceeds its own: a lower bound stays one, and no logarithm per cell.
   depthOfCode_[0] = 0.0f;
-  for (int q = 1; q < 256; ++q)
+  float alphaOfCode[256] = {0.0f};
+  for (int q = 1; q < 256; ++q) {
     depthOfCode_[q] = float(double(threshold_) * std::exp(std::log(1e-4) * double(255 - q) / 254.0));
-  auto codeOf = [&](float depth) {
-    return std::uint8_t(std::upper_bound(depthOfCode_, depthOfCode_ + 256, depth) - depthOfCode_ - 1);
+    const float a = float(-std::expm1(-double(depthOfCode_[q]) / (1.0 - 2e-6)));
+    alphaOfCode[q] = std::nextafter(a, 2.0f);
+  }
+  auto codeOf = [&](float alpha) {  // the last q with alphaOfCode[q] <= alpha; branch-free halving
+    int q = 0;
+    for (int half = 128; half > 0; half /= 2) q += alphaOfCode[q + half] <= alpha ? half : 0;
+    return std::uint8_t(q);
   };
-  // Per block: the codes of its one-voxel cells' depths, each at least the cell's (both are lower
-  // bounds). A block is kept where its voxel-cells prove clearly more than the whole cell: a
-  // step through voxels costs a few times a cell's, and a small gain (a dense field's smooth
-  // ranges, the CT head's soft tissue) buys fewer samples than it costs (measured: turbulence P = 64
-  // -6% samples but +30% time with every block; the phantom's skull keeps most of its gain).
-  auto fineCodes = [&](std::size_t cell, std::uint8_t* out) {
-    const CellRangeGrid::FineCodes* ranges = cells.fine.data() + std::size_t(cells.fineBlock[cell]) * kFine;
-    double gain = 0.0;
-    for (int i = 0; i < kFine; ++i) {
-      const glm::vec2 r = cells.fineRange(cell, ranges[i]);
-      const float d = r.x <= r.y ? depthOfOpacity(table.minAlpha(r.x * scale + bias, r.y * scale + bias)) : 0.0f;
-      out[i] = codeOf(std::max(d, depth_[cell]));
-      gain += std::max(0.0f, std::min(d, threshold_) - depth_[cell]);
-    }
-    return gain > 0.0 && gain / kFine >= kMinFineGain * threshold_;
-  };
+  // A translucent transfer function (no sample adds the gain below) needs no block at all.
+  if (depthOfOpacity(table.maxAlpha(0.0f, 1.0f)) < kMinFineGain * threshold_) return;
   std::vector<std::size_t> fineCells;
   for (std::size_t i = 0; i < cells.fineBlock.size(); ++i)
     if (cells.fineBlock[i] >= 0) fineCells.push_back(i);
-  std::vector<std::uint8_t> useful(fineCells.size(), 0);
+  // Per block: the codes of its voxel-cells, each at least the whole cell's (both are lower
+  // bounds). A block is kept where its voxel-cells prove clearly more than the whole cell: a
+  // sample's step through voxels costs about what a cell's step does, and a small gain (a dense
+  // field's smooth ranges, the CT head's soft tissue) buys fewer samples than it costs (measured:
+  // turbulence P = 64 -6% samples but +30% time with every block; the phantom's skull keeps most
+  // of its gain).
+  std::vector<std::uint8_t> codes(fineCells.size() * kFine), useful(fineCells.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fineCells.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::uint8_t scratch[kFine];
-    for (std::size_t k = r.begin(); k < r.end(); ++k) useful[k] = fineCodes(fineCells[k], scratch) ? 1 : 0;
+    for (std::size_t k = r.begin(); k < r.end(); ++k) {
+      const std::size_t cell = fineCells[k];
+      const CellRangeGrid::FineCodes* ranges = cells.fine.data() + std::size_t(cells.fineBlock[cell]) * kFine;
+      const glm::vec2 whole = cells.ranges[cell];
+      const std::uint8_t floor = codeOf(table.minAlpha(whole.x * scale + bias, whole.y * scale + bias));
+      std::uint8_t* out = codes.data() + k * kFine;
+      double gain = 0.0;
+      for (int i = 0; i < kFine; ++i) {
+        const glm::vec2 v = cells.fineRange(cell, ranges[i]);
+        out[i] = v.x <= v.y ? std::max(floor, codeOf(table.minAlpha(v.x * scale + bias, v.y * scale + bias))) : floor;
+        gain += std::max(0.0f, depthOfCode_[out[i]] - depth_[cell]);
+      }
+      useful[k] = gain / kFine >= kMinFineGain * threshold_ && gain > 0.0;
+    }
   });
-  std::vector<std::size_t> kept;
-  for (std::size_t k = 0; k < fineCells.size(); ++k)
-    if (useful[k]) kept.push_back(fineCells[k]);
+  const std::size_t blocks = std::size_t(std::count(useful.begin(), useful.end(), std::uint8_t(1)));
   // Blocks aligned to cache lines: the walk reads one line per cell it steps through voxel by voxel.
-  fineCode_.resize(kept.size() * kFine + 63);
+  fineCode_.assign(blocks * kFine + 63, 0);
   fineOffset_ = std::size_t((64 - reinterpret_cast<std::uintptr_t>(fineCode_.data()) % 64) % 64);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t b = r.begin(); b < r.end(); ++b) fineCodes(kept[b], fineCode_.data() + fineOffset_ + b * kFine);
-  });
-  for (std::size_t b = 0; b < kept.size(); ++b) depth_[kept[b]] = -float(b + 1);
-  fineBlocks_ = kept.size();
+  std::size_t b = 0;
+  for (std::size_t k = 0; k < fineCells.size(); ++k)
+    if (useful[k]) {
+      std::copy_n(codes.data() + k * kFine, kFine, fineCode_.data() + fineOffset_ + b * kFine);
+      depth_[fineCells[k]] = -float(++b);
+    }
+  fineBlocks_ = blocks;
 }
 
 long OcclusionGrid::occludedFrom(const glm::vec3& o, const glm::vec3& d, float step, float phase) const {
