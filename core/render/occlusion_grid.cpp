@@ -10,6 +10,8 @@
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
 
+#include "core/render/empty_space_map.h"
+
 namespace kdswap {
 namespace {
 
@@ -147,6 +149,13 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
   }
   depthLo_ = glm::vec3(lo * kCell);
   depthHi_ = glm::min(glm::vec3((hi + 1) * kCell), domainHi_);
+  // How far the cells without depth around each one reach (0 where a cell has depth): the walks
+  // cross such a region in one step (the phantom's air: 80% of its cell steps).
+  std::vector<std::uint8_t> zeroWhereDepth(depth_.size());
+  for (std::size_t i = 0; i < depth_.size(); ++i) zeroWhereDepth[i] = depth_[i] != 0.0f ? 0 : 1;
+  const std::vector<std::uint8_t> reach = EmptySpaceMap::chessboardDistance(std::move(zeroWhereDepth), count_);
+  for (std::size_t i = 0; i < depth_.size(); ++i)
+    if (depth_[i] == 0.0f) depth_[i] = -(kReachBase + float(reach[i]));
 }
 
 void OcclusionGrid::useFineCells(const CellRangeGrid& cells, const TransferTable& table, float scale, float bias) {
@@ -295,9 +304,29 @@ long OcclusionGrid::walk(Walk w, float step) const {
         if (sum + depth * samples >= threshold_) return reachedAt(sum, depth, first, samples);
         sum += depth * samples;
       }
-    } else if (depth < 0.0f) {
+    } else if (depth >= -kReachBase) {
       long reached;
       if (walkFine(w.ray, cx, cy, cz, blockOf(depth), t, segmentEnd, step, phase, sum, reached)) return reached;
+    } else if (const int n = int(-depth - kReachBase); n >= 2) {
+      // Every cell within n - 1 of this one adds nothing: leave that cube in one step, to the
+      // cell and face times the one-cell steps would reach (up to rounding, which the margins
+      // absorb). The ray leaves by the axis whose cube face comes first; along the others it
+      // crosses the faces before that time.
+      const float across = -depth - kReachBase, far = across - 1.0f;
+      const float cubeX = exitX + far * w.deltaX, cubeY = exitY + far * w.deltaY, cubeZ = exitZ + far * w.deltaZ;
+      const int leave = cubeX <= cubeY ? (cubeX <= cubeZ ? 0 : 2) : (cubeY <= cubeZ ? 1 : 2);
+      const float tCube = leave == 0 ? cubeX : leave == 1 ? cubeY : cubeZ;
+      auto crossed = [&](float exit, float delta, int axis) {
+        return axis == leave ? across : exit < tCube ? std::min(std::ceil((tCube - exit) / delta), far) : 0.0f;
+      };
+      const float kx = crossed(exitX, w.deltaX, 0), ky = crossed(exitY, w.deltaY, 1), kz = crossed(exitZ, w.deltaZ, 2);
+      if (tCube >= t1) return kNever;
+      cx += int(kx) * w.dirX, cy += int(ky) * w.dirY, cz += int(kz) * w.dirZ;
+      if (cx < 0 || cx >= count_.x || cy < 0 || cy >= count_.y || cz < 0 || cz >= count_.z) return kNever;
+      index = (std::ptrdiff_t(cz) * count_.y + cy) * count_.x + cx;
+      exitX += kx * w.deltaX, exitY += ky * w.deltaY, exitZ += kz * w.deltaZ;
+      t = std::max(t, tCube);
+      continue;
     }
     if (segmentEnd >= t1) return kNever;
     if (axis == 0) {

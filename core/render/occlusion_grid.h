@@ -94,6 +94,9 @@ class OcclusionGrid {
   //! Called by both walks (scalar and eight at once), so they stay equal bit for bit.
   //! The block of one-voxel depths a negative cell depth stands for.
   static int blockOf(float depth) { return int(-depth) - 1; }
+  //! Cell depths below -kReachBase stand for a cell without depth whose empty surroundings reach
+  //! -depth - kReachBase (>= 1); blocks of one-voxel depths lie above it (-1 .. -kReachBase).
+  static constexpr float kReachBase = 8388608.0f;  // 2^23: both codes stay exact floats
   bool walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step, float phase,
                 float& sum, long& reached) const;
 
@@ -125,7 +128,10 @@ class OcclusionGrid {
   glm::vec3 depthLo_{0.0f}, depthHi_{0.0f};  //!< voxel box of the cells that add depth, within the domain
   //! Per cell: -ln(1 - smallest opacity a sample there can have); a sum over samples bounds the
   //! optical depth, so opacity >= 1 - exp(-sum). A cell whose one-voxel cells prove more stores
-  //! -(b + 1) instead: block b of fineCode_ holds theirs (blockOf reads it back).
+  //! -(b + 1) instead: block b of fineCode_ holds theirs (blockOf reads it back). A cell without
+  //! depth stores -(kReachBase + n): every cell within n - 1 of it along each axis has none
+  //! either (EmptySpaceMap::chessboardDistance), so the walks cross that cube in one step. One
+  //! array, so a walk's step reads one value (the eight-lane gathers were the walk's cost).
   std::vector<float> depth_;
   //! CellRangeGrid::kFinePerCell codes per block (x fastest) from fineOffset_ on, a block per cache line.
   std::vector<std::uint8_t> fineCode_;

@@ -40,6 +40,13 @@ KDSWAP_AVX2 inline __m256i asInt(__m256 v) { return _mm256_castps_si256(v); }
 KDSWAP_AVX2 inline __m256 load(const float* p) { return _mm256_load_ps(p); }
 KDSWAP_AVX2 inline __m256i load(const int* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
 
+//! Cells a jump crosses along one axis: n (`across`) along the axis it leaves the cube by,
+//! otherwise the faces before tCube, at most n - 1 (`far`); the scalar walk's jump.
+KDSWAP_AVX2 inline __m256 facesCrossed(__m256 exit, __m256 delta, __m256 leave, __m256 tCube, __m256 far, __m256 across) {
+  const __m256 k = _mm256_min_ps(_mm256_ceil_ps(_mm256_div_ps(_mm256_sub_ps(tCube, exit), delta)), far);
+  return _mm256_blendv_ps(_mm256_and_ps(_mm256_cmp_ps(exit, tCube, _CMP_LT_OQ), k), across, leave);
+}
+
 KDSWAP_AVX2 void walkEight(const OcclusionGrid& grid, const float* depthOf, int countX, int countY, int countZ,
                            float threshold, float step, const Lanes& in, LaneEnds& ends) {
   __m256 t = load(in.t), exitX = load(in.exitX), exitY = load(in.exitY), exitZ = load(in.exitZ);
@@ -48,7 +55,8 @@ KDSWAP_AVX2 void walkEight(const OcclusionGrid& grid, const float* depthOf, int 
   __m256i cx = load(in.cx), cy = load(in.cy), cz = load(in.cz), index = load(in.index);
   const __m256i dirX = load(in.dirX), dirY = load(in.dirY), dirZ = load(in.dirZ);
   const __m256i strideY = _mm256_set1_epi32(countX), strideZ = _mm256_set1_epi32(countX * countY);
-  const __m256i stepX = dirX, stepY = _mm256_mullo_epi32(dirY, strideY), stepZ = _mm256_mullo_epi32(dirZ, strideZ);
+  const __m256i strideX1 = dirX, strideY1 = _mm256_mullo_epi32(dirY, strideY),
+                strideZ1 = _mm256_mullo_epi32(dirZ, strideZ);  // index steps along each axis
   const __m256i limitX = _mm256_set1_epi32(countX), limitY = _mm256_set1_epi32(countY),
                 limitZ = _mm256_set1_epi32(countZ), minusOne = _mm256_set1_epi32(-1);
   __m256i active = load(in.active);
@@ -87,7 +95,10 @@ KDSWAP_AVX2 void walkEight(const OcclusionGrid& grid, const float* depthOf, int 
       active = _mm256_andnot_si256(asInt(reached), active);
     }
     // Lanes in cells with one-voxel depths walk those one lane at a time (the scalar walk's code).
-    if (const int fine = _mm256_movemask_ps(_mm256_and_ps(asFloat(active), _mm256_cmp_ps(depth, zero, _CMP_LT_OQ)))) {
+    const __m256 reachBase = _mm256_set1_ps(OcclusionGrid::kReachBase);
+    const __m256 fineLanes = _mm256_and_ps(_mm256_cmp_ps(depth, zero, _CMP_LT_OQ),
+                                           _mm256_cmp_ps(depth, _mm256_sub_ps(zero, reachBase), _CMP_GE_OQ));
+    if (const int fine = _mm256_movemask_ps(_mm256_and_ps(asFloat(active), fineLanes))) {
       alignas(32) float s[kLanes], d[kLanes], from[kLanes], to[kLanes], ph[kLanes];
       alignas(32) int x[kLanes], y[kLanes], z[kLanes], stop[kLanes] = {};
       _mm256_store_ps(s, sum), _mm256_store_ps(d, depth), _mm256_store_ps(from, t), _mm256_store_ps(to, segmentEnd);
@@ -104,23 +115,58 @@ KDSWAP_AVX2 void walkEight(const OcclusionGrid& grid, const float* depthOf, int 
       active = _mm256_andnot_si256(load(stop), active);
     }
     sum = _mm256_blendv_ps(sum, added, counted);
-    // The walk's end, then a step across the crossed face (a step off the grid ends it too).
-    active = _mm256_andnot_si256(asInt(_mm256_cmp_ps(segmentEnd, t1, _CMP_GE_OQ)), active);
-    cx = _mm256_add_epi32(cx, _mm256_and_si256(asInt(crossX), dirX));
-    cy = _mm256_add_epi32(cy, _mm256_and_si256(asInt(crossY), dirY));
-    cz = _mm256_add_epi32(cz, _mm256_and_si256(asInt(crossZ), dirZ));
+    // Lanes in an empty cell whose empty surroundings reach n >= 2 leave that cube of cells in one
+    // step (the scalar walk's jump, operation for operation); the others step one cell.
+    // -depth - kReachBase: the reach of a cell without depth (below 1 for the others)
+    const __m256 across = _mm256_sub_ps(_mm256_sub_ps(zero, depth), reachBase);
+    const __m256 jump = _mm256_and_ps(asFloat(active), _mm256_cmp_ps(across, _mm256_set1_ps(2.0f), _CMP_GE_OQ));
+    const __m256 stepX = _mm256_andnot_ps(jump, crossX), stepY = _mm256_andnot_ps(jump, crossY),
+                 stepZ = _mm256_andnot_ps(jump, crossZ);
+    __m256 ended = _mm256_cmp_ps(segmentEnd, t1, _CMP_GE_OQ);
+    cx = _mm256_add_epi32(cx, _mm256_and_si256(asInt(stepX), dirX));
+    cy = _mm256_add_epi32(cy, _mm256_and_si256(asInt(stepY), dirY));
+    cz = _mm256_add_epi32(cz, _mm256_and_si256(asInt(stepZ), dirZ));
+    index = _mm256_add_epi32(index, _mm256_or_si256(_mm256_or_si256(_mm256_and_si256(asInt(stepX), strideX1),
+                                                                    _mm256_and_si256(asInt(stepY), strideY1)),
+                                                    _mm256_and_si256(asInt(stepZ), strideZ1)));
+    exitX = _mm256_blendv_ps(exitX, _mm256_add_ps(exitX, deltaX), stepX);
+    exitY = _mm256_blendv_ps(exitY, _mm256_add_ps(exitY, deltaY), stepY);
+    exitZ = _mm256_blendv_ps(exitZ, _mm256_add_ps(exitZ, deltaZ), stepZ);
+    __m256 next = segmentEnd;
+    if (_mm256_movemask_ps(jump) != 0) {
+      const __m256 far = _mm256_sub_ps(across, _mm256_set1_ps(1.0f));
+      const __m256 cubeX = _mm256_add_ps(exitX, _mm256_mul_ps(far, deltaX)),
+                   cubeY = _mm256_add_ps(exitY, _mm256_mul_ps(far, deltaY)),
+                   cubeZ = _mm256_add_ps(exitZ, _mm256_mul_ps(far, deltaZ));
+      const __m256 cxy = _mm256_cmp_ps(cubeX, cubeY, _CMP_LE_OQ), cxz = _mm256_cmp_ps(cubeX, cubeZ, _CMP_LE_OQ),
+                   cyz = _mm256_cmp_ps(cubeY, cubeZ, _CMP_LE_OQ);
+      const __m256 leaveX = _mm256_and_ps(cxy, cxz), leaveY = _mm256_andnot_ps(cxy, cyz);
+      const __m256 leaveZ = _mm256_andnot_ps(_mm256_or_ps(leaveX, leaveY), asFloat(minusOne));
+      const __m256 tCube = _mm256_blendv_ps(_mm256_blendv_ps(cubeZ, cubeY, leaveY), cubeX, leaveX);
+      const __m256 kx = facesCrossed(exitX, deltaX, leaveX, tCube, far, across),
+                   ky = facesCrossed(exitY, deltaY, leaveY, tCube, far, across),
+                   kz = facesCrossed(exitZ, deltaZ, leaveZ, tCube, far, across);
+      const __m256i jumpI = asInt(jump);
+      cx = _mm256_blendv_epi8(cx, _mm256_add_epi32(cx, _mm256_mullo_epi32(_mm256_cvttps_epi32(kx), dirX)), jumpI);
+      cy = _mm256_blendv_epi8(cy, _mm256_add_epi32(cy, _mm256_mullo_epi32(_mm256_cvttps_epi32(ky), dirY)), jumpI);
+      cz = _mm256_blendv_epi8(cz, _mm256_add_epi32(cz, _mm256_mullo_epi32(_mm256_cvttps_epi32(kz), dirZ)), jumpI);
+      // (cz * countY + cy) * countX + cx; lanes off the grid end below before their index is read
+      index = _mm256_blendv_epi8(
+          index, _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, limitY), cy), limitX), cx),
+          jumpI);
+      exitX = _mm256_blendv_ps(exitX, _mm256_add_ps(exitX, _mm256_mul_ps(kx, deltaX)), jump);
+      exitY = _mm256_blendv_ps(exitY, _mm256_add_ps(exitY, _mm256_mul_ps(ky, deltaY)), jump);
+      exitZ = _mm256_blendv_ps(exitZ, _mm256_add_ps(exitZ, _mm256_mul_ps(kz, deltaZ)), jump);
+      ended = _mm256_blendv_ps(ended, _mm256_cmp_ps(tCube, t1, _CMP_GE_OQ), jump);
+      next = _mm256_blendv_ps(segmentEnd, tCube, jump);
+    }
+    // The walk's end (its last segment, or a step off the grid).
     const __m256i outside = _mm256_or_si256(
         _mm256_or_si256(_mm256_or_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), cx), _mm256_cmpgt_epi32(limitX, cx) ^ minusOne),
                         _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), cy), _mm256_cmpgt_epi32(limitY, cy) ^ minusOne)),
         _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), cz), _mm256_cmpgt_epi32(limitZ, cz) ^ minusOne));
-    active = _mm256_andnot_si256(outside, active);
-    index = _mm256_add_epi32(index, _mm256_or_si256(_mm256_or_si256(_mm256_and_si256(asInt(crossX), stepX),
-                                                                    _mm256_and_si256(asInt(crossY), stepY)),
-                                                    _mm256_and_si256(asInt(crossZ), stepZ)));
-    exitX = _mm256_blendv_ps(exitX, _mm256_add_ps(exitX, deltaX), crossX);
-    exitY = _mm256_blendv_ps(exitY, _mm256_add_ps(exitY, deltaY), crossY);
-    exitZ = _mm256_blendv_ps(exitZ, _mm256_add_ps(exitZ, deltaZ), crossZ);
-    t = _mm256_max_ps(segmentEnd, t);  // std::max(t, segmentEnd)
+    active = _mm256_andnot_si256(_mm256_or_si256(asInt(ended), outside), active);
+    t = _mm256_max_ps(next, t);  // std::max(t, segmentEnd or the cube's exit)
   }
 }
 
