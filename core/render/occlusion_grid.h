@@ -39,7 +39,7 @@ struct CellRangeGrid {
   static constexpr int kShift = 2;  //!< cells of 2^kShift voxels per axis
   static constexpr int kSide = 1 << kShift;
   static constexpr int kFinePerCell = kSide * kSide * kSide;  //!< one-voxel cells in a cell
-  //! At most this share of the cells keep fine ranges (128 bytes each: 2 bytes a voxel-cell).
+  //! At most one cell in this many keeps fine ranges (128 bytes each: 2 bytes a voxel-cell).
   static constexpr int kFineBudgetDivisor = 4;
   //! Only cells whose range spans at least this share of the volume's keep them: a sharp boundary
   //! between matter and air (the phantom's skull: its whole range). Narrower ranges (a smooth
@@ -91,15 +91,15 @@ class OcclusionGrid {
   struct RayLine {
     float ox, oy, oz, dx, dy, dz;
   };
-  //! The walk's segment [t, end) crosses cell (cx, cy, cz), whose one-voxel depths are block
-  //! `block` of fineCode_: adds their samples to `sum` voxel by voxel, with the cell walk's
-  //! counting rule. True, with the lattice index in `reached`, when the threshold is reached.
-  //! Called by both walks (scalar and eight at once), so they stay equal bit for bit.
   //! The block of one-voxel depths a negative cell depth stands for.
   static int blockOf(float depth) { return int(-depth) - 1; }
   //! Cell depths below -kReachBase stand for a cell without depth whose empty surroundings reach
   //! -depth - kReachBase (>= 1); blocks of one-voxel depths lie above it (-1 .. -kReachBase).
   static constexpr float kReachBase = 8388608.0f;  // 2^23: both codes stay exact floats
+  //! The walk's segment [t, end) crosses cell (cx, cy, cz), whose one-voxel depths are block
+  //! `block` of fineCode_: adds their samples to `sum` voxel by voxel, with the cell walk's
+  //! counting rule. True, with the lattice index in `reached`, when the threshold is reached.
+  //! Called by both walks (scalar and eight at once), so they stay equal bit for bit.
   bool walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step, float phase,
                 float& sum, long& reached) const;
 
