@@ -24,6 +24,18 @@ constexpr float kOpacityMargin = 1e-3f;
 //! termination depth per sample over the whole cell's (see useFineCells).
 constexpr double kMinFineGain = 0.04;
 
+//! The lattice indices a walk counts in its segment [t, end): first, and one past the last, the
+//! points at least a margin inside (a fiftieth of a step, and rounding of t), so rounding in
+//! positions and boundaries never counts a sample twice or in the wrong cell. One rule for the
+//! cell walk and the voxel-cell walk (the eight-lane walk spells out the same operations).
+struct CountedRange {
+  float first, last;
+};
+inline CountedRange countedRange(float t, float end, float perStep, float step, float phase) {
+  const float margin = 0.02f * step + 1e-6f * std::fabs(end);
+  return {std::ceil((t + margin) * perStep - phase), std::ceil((end - margin) * perStep - phase)};
+}
+
 //! -ln(1 - a), rounded down, so a sum of them stays a lower bound of the optical depth.
 float depthOfOpacity(float a) {
   return a <= 0.0f ? 0.0f : (a >= 1.0f ? 1e6f : float(-std::log1p(-double(a)) * (1.0 - 1e-6)));
@@ -200,7 +212,7 @@ void OcclusionGrid::useFineCells(const CellRangeGrid& cells, const TransferTable
         out[i] = v.x <= v.y ? std::max(floor, codeOf(table.minAlpha(v.x * scale + bias, v.y * scale + bias))) : floor;
         gain += std::max(0.0f, depthOfCode_[out[i]] - depth_[cell]);
       }
-      useful[k] = gain / kFine >= kMinFineGain * threshold_ && gain > 0.0;
+      useful[k] = gain / kFine >= kMinFineGain * threshold_;
     }
   });
   const std::size_t blocks = std::size_t(std::count(useful.begin(), useful.end(), std::uint8_t(1)));
@@ -297,9 +309,8 @@ long OcclusionGrid::walk(Walk w, float step) const {
     const float segmentEnd = std::min(axis == 0 ? exitX : axis == 1 ? exitY : exitZ, t1);
     const float depth = depth_[std::size_t(index)];
     if (depth > 0.0f) {
-      const float margin = 0.02f * step + 1e-6f * std::fabs(segmentEnd);
-      const float first = std::ceil((t + margin) * perStep - phase);  // first lattice index counted here
-      const float samples = std::ceil((segmentEnd - margin) * perStep - phase) - first;
+      const CountedRange counted = countedRange(t, segmentEnd, perStep, step, phase);
+      const float first = counted.first, samples = counted.last - counted.first;
       if (samples > 0.0f) {
         if (sum + depth * samples >= threshold_) return reachedAt(sum, depth, first, samples);
         sum += depth * samples;
@@ -355,16 +366,13 @@ bool OcclusionGrid::walkFine(const RayLine& ray, int cx, int cy, int cz, int blo
   // credited with the depth of the one-voxel cell it falls in. A sample the renderer places a
   // rounding away, across a voxel face, interpolates a value within rounding of the face's,
   // which both cells' ranges hold; the transfer table's one-entry widening covers the rest.
-  const float perStep = 1.0f / step;
-  const float margin = 0.02f * step + 1e-6f * std::fabs(end);
-  const float first = std::ceil((t + margin) * perStep - phase);
-  const float last = std::ceil((end - margin) * perStep - phase);  // one past the last counted
+  const CountedRange counted = countedRange(t, end, 1.0f / step, step, phase);
   const std::uint8_t* code = fineCode_.data() + fineOffset_ + std::size_t(block) * kFine;
   const int bx = cx * kCell, by = cy * kCell, bz = cz * kCell;
   // Truncation is floor for positions >= 0; below 0 only cell 0 is near, and the clamp picks it.
   auto voxel = [](float p, int base) { return std::clamp(int(p) - base, 0, kCell - 1); };
   float total = sum;
-  for (float k = first; k < last; k += 1.0f) {
+  for (float k = counted.first; k < counted.last; k += 1.0f) {
     const float s = (k + phase) * step;
     const int fx = voxel(ray.ox + ray.dx * s, bx), fy = voxel(ray.oy + ray.dy * s, by), fz = voxel(ray.oz + ray.dz * s, bz);
     total += depthOfCode_[code[(fz * kCell + fy) * kCell + fx]];

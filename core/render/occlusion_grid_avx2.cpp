@@ -99,15 +99,14 @@ KDSWAP_AVX2 void walkEight(const OcclusionGrid& grid, const float* depthOf, int 
     const __m256 fineLanes = _mm256_and_ps(_mm256_cmp_ps(depth, zero, _CMP_LT_OQ),
                                            _mm256_cmp_ps(depth, _mm256_sub_ps(zero, reachBase), _CMP_GE_OQ));
     if (const int fine = _mm256_movemask_ps(_mm256_and_ps(asFloat(active), fineLanes))) {
-      alignas(32) float s[kLanes], d[kLanes], from[kLanes], to[kLanes], ph[kLanes];
+      alignas(32) float s[kLanes], d[kLanes], from[kLanes], to[kLanes];
       alignas(32) int x[kLanes], y[kLanes], z[kLanes], stop[kLanes] = {};
       _mm256_store_ps(s, sum), _mm256_store_ps(d, depth), _mm256_store_ps(from, t), _mm256_store_ps(to, segmentEnd);
-      _mm256_store_ps(ph, phase);
       _mm256_store_si256(reinterpret_cast<__m256i*>(x), cx), _mm256_store_si256(reinterpret_cast<__m256i*>(y), cy),
           _mm256_store_si256(reinterpret_cast<__m256i*>(z), cz);
       for (int j = 0; j < kLanes; ++j)
         if (fine & (1 << j) && grid.walkFine(in.ray[j], x[j], y[j], z[j], OcclusionGrid::blockOf(d[j]), from[j], to[j],
-                                             step, ph[j], s[j], ends.answer[j])) {
+                                             step, in.phase[j], s[j], ends.answer[j])) {
           ends.reachedFine[j] = true;
           stop[j] = -1;
         }
