@@ -109,7 +109,8 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
                   "integers, 8 B: half the memory, 16-bit precision) or auto (compact above 2^23 voxels)")
       ->capture_default_str();
   cmd->add_option("--stall-timeout", o.stallSeconds,
-                  "Abort a frame when no message moves for this many seconds, naming who waits on whom")
+                  "Abort a frame when nodes wait and no node works or sends for this many seconds, naming who waits on whom "
+                  "(a long render is never cut short)")
       ->capture_default_str();
   cmd->add_flag("--checksums", o.checksums, "Checksum every message and refuse corrupted ones");
   cmd->add_option("--node-execution", o.nodeExecution,

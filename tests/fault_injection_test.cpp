@@ -122,3 +122,26 @@ TEST_CASE("a corrupted message is detected by its checksum and never composited"
     CHECK(message.find("from node 6") != std::string::npos);
   }
 }
+
+TEST_CASE("a render that takes longer than the stall limit is progress, not a stall") {
+  // The limit is far below the frame's time: a node still rendering (P = 1, where nobody ever
+  // waits; P = 2, where the first node done waits for the other) must not end the frame.
+  Setup s;
+  s.request.width = s.request.height = 256;
+  s.request.settings.stepVoxels = 0.01f;
+  for (NodeExecution execution : kExecutions)
+    for (int nodes : {1, 2}) {
+      CAPTURE(name(execution));
+      CAPTURE(nodes);
+      ClusterOptions options;
+      options.execution = execution;
+      options.nodes = nodes;
+      options.stallSeconds = 0.02;
+      VirtualCluster cluster(*s.volume, options);
+      const double start = nowSeconds();
+      const FrameResult frame = cluster.renderFrame(s.request);
+      // The frame outlasted the limit and the watchdog's 50 ms polls several times over.
+      CHECK(nowSeconds() - start > 0.2);
+      CHECK(s.diffAgainstReference(frame.image) <= 1e-5f);
+    }
+}

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -20,6 +21,12 @@
 namespace kdswap {
 namespace {
 
+std::string formatSeconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g s", seconds);
+  return text;
+}
+
 // Occlusion culling's rest rule (renderFrame): below this share of ray-brick pairs culled, its map
 // costs more than it saves; so many frames then go without it.
 constexpr double kMinCulledShare = 0.05;
@@ -29,8 +36,9 @@ constexpr int kCullingRestFrames = 15;
 // waits on whom: every wait can end.
 class StallWatchdog {
  public:
-  StallWatchdog(InprocNetwork& network, const std::atomic<int>& finished, double limit)
-      : network_(network), finished_(finished), limit_(limit), thread_([this] { watch(); }) {}
+  //! `participants`: the tasks of the frame (nodes, and the host task when there is one).
+  StallWatchdog(InprocNetwork& network, const std::atomic<int>& finished, int participants, double limit)
+      : network_(network), finished_(finished), participants_(participants), limit_(limit), thread_([this] { watch(); }) {}
   ~StallWatchdog() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -41,6 +49,15 @@ class StallWatchdog {
   }
 
  private:
+  // A stall: someone waits for a message, nobody is working (every unfinished participant waits
+  // or is held in the transport), and no message has moved for the limit. A node still rendering
+  // a large brick is progress, however long it takes: only waiting with nothing to wait on ends
+  // a frame.
+  bool nobodyWorking() const {
+    const int waiting = network_.waitingCount();
+    return waiting > 0 && waiting + network_.inTransport() >= participants_ - finished_.load();
+  }
+
   void watch() {
     std::uint64_t lastDelivered = network_.delivered();
     int lastFinished = finished_.load();
@@ -51,16 +68,18 @@ class StallWatchdog {
       if (done_) break;
       const std::uint64_t delivered = network_.delivered();
       const int finished = finished_.load();
-      if (delivered != lastDelivered || finished != lastFinished) {
+      if (delivered != lastDelivered || finished != lastFinished || !nobodyWorking()) {
         lastDelivered = delivered, lastFinished = finished, lastProgress = nowSeconds();
       } else if (nowSeconds() - lastProgress > limit_ && !network_.aborted()) {
-        network_.abort("stalled: no message for " + std::to_string(int(limit_)) + " s; " + network_.describeWaits());
+        network_.abort("stalled: no message for " + formatSeconds(limit_) + " while no node works; " +
+                       network_.describeWaits());
       }
     }
   }
 
   InprocNetwork& network_;
   const std::atomic<int>& finished_;
+  int participants_;
   double limit_;
   std::mutex mutex_;
   std::condition_variable wake_;
@@ -204,7 +223,7 @@ void VirtualCluster::runOnNodes(Body&& body, bool withHostTask, const std::funct
     finished.fetch_add(1);
   };
   {
-    StallWatchdog watchdog(network_, finished, options_.stallSeconds);
+    StallWatchdog watchdog(network_, finished, options_.nodes + (withHostTask ? 1 : 0), options_.stallSeconds);
     if (options_.execution == NodeExecution::Threads) {
       // Not inside arena_: a thread without a free arena slot would be queued as a task there, and
       // blocked nodes holding the slots would starve the rest. The ray caster's parallel loops run

@@ -51,7 +51,7 @@ struct ClusterOptions {
   std::string strategy = "binary-swap";
   CompositeOptions composite;
   int threads = 0;                       //!< worker threads; 0 = every core
-  double stallSeconds = 60.0;            //!< a frame with no message for this long is aborted
+  double stallSeconds = 60.0;            //!< a frame whose nodes all wait, with no message for this long, is aborted
   bool checksums = kChecksumsByDefault;  //!< checksum every message; a corrupted one is refused
   NodeExecution execution = kDefaultNodeExecution;
 

@@ -32,6 +32,15 @@ void InprocNetwork::reset() {
   aborted_.store(false, std::memory_order_release);
 }
 
+int InprocNetwork::waitingCount() const {
+  int count = 0;
+  for (const auto& box : mailboxes_) {
+    int source = 0, tag = 0;
+    if (box->waitingFor(source, tag)) ++count;
+  }
+  return count;
+}
+
 std::string InprocNetwork::describeWaits() const {
   std::string text;
   int shown = 0, total = 0;
@@ -59,7 +68,14 @@ void InprocCommunicator::send(int dest, int tag, Message message) {
   counters_.bytesSent += message.bytes();
   ++counters_.messagesSent;
   if (checksums_) message.checksum = messageChecksum(message);
-  if (filter_ && !filter_(message)) return;  // dropped by fault injection
+  if (filter_) {
+    struct InTransport {  // a filter may sleep (a delayed message) or throw
+      InprocNetwork& network;
+      explicit InTransport(InprocNetwork& n) : network(n) { network.enterTransport(); }
+      ~InTransport() { network.leaveTransport(); }
+    } inTransport(network_);
+    if (!filter_(message)) return;  // dropped by fault injection
+  }
   network_.mailbox(dest).post(std::move(message));
   network_.countDelivery();
 }

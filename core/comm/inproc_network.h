@@ -36,11 +36,19 @@ class InprocNetwork {
   void countDelivery() { delivered_.fetch_add(1, std::memory_order_relaxed); }
   //! "node 3 waits for node 2 (tag 101); ..." for every node currently waiting.
   std::string describeWaits() const;
+  //! Participants currently blocked in a receive (their mailbox waits).
+  int waitingCount() const;
+  //! Senders held up inside the transport (fault injection's delays): they wait on the network,
+  //! not on their own work, so the stall watchdog counts them with the waiting ones.
+  int inTransport() const { return inTransport_.load(std::memory_order_relaxed); }
+  void enterTransport() { inTransport_.fetch_add(1, std::memory_order_relaxed); }
+  void leaveTransport() { inTransport_.fetch_sub(1, std::memory_order_relaxed); }
 
  private:
   std::vector<std::unique_ptr<Mailbox>> mailboxes_;
   std::atomic<bool> aborted_{false};
   std::atomic<std::uint64_t> delivered_{0};
+  std::atomic<int> inTransport_{0};
   mutable std::mutex reasonMutex_;  //!< guards reason_ only; never taken on the message path
   std::string reason_;
 };
