@@ -24,6 +24,7 @@
 #include "core/image/image_io.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/reader.h"
 
@@ -147,8 +148,8 @@ void runGrid(const BenchOptions& o) {
               double(o.step), o.shading.c_str(), o.frames, double(o.degrees));
   std::printf("%s%s", formatPaperLayout(result.cells).c_str(), formatCellDetails(result.cells).c_str());
   const std::filesystem::path dir(o.outDir);
-  writeTextFile((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
-  writeTextFile((dir / "bench.json").string(), benchJson(ctx, result).dump(2) + "\n");
+  writeFileAtomically((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
+  writeFileAtomically((dir / "bench.json").string(), benchJson(ctx, result).dump(2) + "\n");
   std::printf("wrote %s and %s\n", (dir / "bench.csv").c_str(), (dir / "bench.json").c_str());
   // One chart per measured strategy label ("binary-swap", "binary-swap+cost", ...), in run order.
   std::vector<std::string> labels;

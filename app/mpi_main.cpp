@@ -18,6 +18,7 @@
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 #include "core/util/memory.h"
 
 namespace kdswap {
@@ -66,9 +67,7 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
                 verified ? "OK" : "FAILED");
   }
   if (!o.stats.empty()) {
-    const std::string temp = o.stats + ".tmp";
-    std::ofstream(temp) << stats.dump(2) << "\n";
-    std::filesystem::rename(temp, o.stats);
+    writeFileAtomically(o.stats, stats.dump(2) + "\n");
   }
   return verified ? 0 : 1;
 }
@@ -134,6 +133,11 @@ int main(int argc, char** argv) {
   CLI::App* cmd = app.add_subcommand("render", "Render one frame on R ranks x K nodes and write the image on rank 0");
   kdswap::addSceneOptions(cmd, o.scene);
   kdswap::addClusterOptions(cmd, o.scene);
+  // The virtual cluster's options that the MPI node program does not carry out: hidden from the
+  // help and refused below, never silently ignored.
+  const char* const virtualOnly[] = {"--balance", "--speeds", "--bricks-per-node", "--network", "--stall-timeout",
+                                     "--checksums", "--node-execution", "--inject-fault"};
+  for (const char* name : virtualOnly) cmd->get_option(name)->group("");
   cmd->add_option("--nodes-per-rank,-k", o.nodesPerRank, "Virtual nodes K on each rank: P = ranks x K")
       ->capture_default_str();
   cmd->add_option("--stall-seconds", o.stallSeconds, "Abort when nodes wait with no traffic this long")
@@ -152,6 +156,13 @@ int main(int argc, char** argv) {
     if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
     return 2;
   }
+  for (const char* name : virtualOnly)
+    if (cmd->get_option(name)->count() > 0) {
+      if (root)
+        std::fprintf(stderr, "kdswap-mpi: %s is not supported over MPI ranks (kdswap render has it)%s\n", name,
+                     std::string(name) == "--stall-timeout" ? "; use --stall-seconds" : "");
+      return 2;
+    }
   try {
     return kdswap::run(o, *session, cmd->get_option("--nodes")->count() > 0);
   } catch (const std::exception& e) {

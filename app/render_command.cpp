@@ -11,6 +11,7 @@
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 
 namespace kdswap {
 namespace {
@@ -51,16 +52,7 @@ void checkWritable(const std::string& path, const char* option) {
   if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
 }
 
-void writeStats(const std::string& path, const nlohmann::json& j) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp);
-    if (!out) throw Error(path + ": cannot open for writing");
-    out << j.dump(2) << "\n";
-    if (!out) throw Error(path + ": write failed");
-  }
-  std::filesystem::rename(temp, path);
-}
+void writeStats(const std::string& path, const nlohmann::json& j) { writeFileAtomically(path, j.dump(2) + "\n"); }
 
 void run(const RenderOptions& o) {
   checkWritable(o.out, "--out");

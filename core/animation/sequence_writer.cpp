@@ -10,7 +10,9 @@
 #include <sstream>
 #include <vector>
 
+#include "core/image/image_io.h"
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 
 namespace kdswap {
 namespace fs = std::filesystem;
@@ -45,16 +47,21 @@ std::map<int, nlohmann::json> readRecords(const std::string& path) {
 }
 
 void writeRecords(const std::string& path, const std::map<int, nlohmann::json>& records) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::trunc);
-    if (!out) throw Error(path + ": cannot open the stats file for writing");
-    for (const auto& [frame, j] : records) out << j.dump() << "\n";
-    if (!out) throw Error(path + ": write failed");
-  }
+  std::string text;
+  for (const auto& [frame, j] : records) text += j.dump() + "\n";
+  writeFileAtomically(path, text);
+}
+
+//! A frame left by an earlier run counts only if its image reads back whole: an empty or cut-off
+//! file (a full disk, a killed older version) is rendered again.
+bool readableImage(const std::string& path) {
   std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) throw Error(path + ": cannot replace the stats file (" + ec.message() + ")");
+  if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) == 0 || ec) return false;
+  try {
+    return !readImage(path).empty();
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 bool matches(const nlohmann::json& record, const nlohmann::json& identity) {
@@ -84,7 +91,7 @@ SequenceWriter::SequenceWriter(const SequenceOptions& o)
   for (int n = std::max(o.frames - 1, 0); n >= 10000; n /= 10) ++digits_;
   if (o.resume) {
     for (auto& [frame, j] : readRecords(statsPath_))
-      if (frame >= 0 && frame < o.frames && fs::exists(framePath(frame)) &&
+      if (frame >= 0 && frame < o.frames && readableImage(framePath(frame)) &&
           matches(j, o.identity ? o.identity(frame) : nlohmann::json::object()))
         records_[frame] = std::move(j);
   }
@@ -101,11 +108,7 @@ bool SequenceWriter::isDone(int frame) const { return records_.count(frame) && f
 
 void SequenceWriter::record(const nlohmann::json& line) {
   // Opened per line: one small append per frame, and nothing is left open when a frame throws.
-  std::ofstream out(statsPath_, std::ios::app);
-  if (!out) throw Error(statsPath_ + ": cannot open the stats file for appending");
-  out << line.dump() << "\n";
-  out.flush();
-  if (!out) throw Error(statsPath_ + ": write failed");
+  appendToFile(statsPath_, line.dump() + "\n");
   records_[line.at("frame").get<int>()] = line;
 }
 

@@ -1,6 +1,6 @@
 // SequenceWriter: the files of an animation in one folder (numbered frames, optional phase grids)
 // and its JSON-lines stats file, which is also the resume bookkeeping: a frame counts as done only
-// when its image exists and its stats line, recorded after the image was written, matches.
+// when its image reads back whole and its stats line, recorded after the image was written, matches.
 #pragma once
 
 #include <functional>
@@ -34,7 +34,7 @@ class SequenceWriter {
   std::string framePattern() const;         //!< DIR/frame_%04d.png, for ffmpeg
   const std::string& statsPath() const { return statsPath_; }
 
-  //! True on resume when the frame's image exists and a matching line was kept for it.
+  //! True on resume when the frame's image reads back whole and a matching line was kept for it.
   bool isDone(int frame) const;
   //! Appends `line` (which must hold "frame") to the stats file and flushes it.
   void record(const nlohmann::json& line);

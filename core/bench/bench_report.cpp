@@ -167,17 +167,4 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
   return j;
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::binary);
-    if (!out) throw Error(path + ": cannot open for writing");
-    out << text;
-    if (!out) throw Error(path + ": write failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) throw Error(path + ": cannot rename from " + temp + ": " + ec.message());
-}
-
 }  // namespace kdswap

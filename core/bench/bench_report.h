@@ -32,7 +32,5 @@ std::string formatCellDetails(const std::vector<BenchCell>& cells);
 std::string benchCsv(const BenchContext& context, const std::vector<BenchCell>& cells);
 nlohmann::json benchJson(const BenchContext& context, const BenchResult& result);
 
-//! Writes `text` to `path` whole or not at all (temporary file, then rename). Throws Error.
-void writeTextFile(const std::string& path, const std::string& text);
 
 }  // namespace kdswap

@@ -266,10 +266,11 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   const double start = nowSeconds();
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
   std::optional<OcclusionMap> occlusion;
-  // Culling never changes an image, only the work: its map (one march per pixel) pays where
-  // opaque matter hides much of the bricks behind it (turbulence: 64% of ray-brick pairs culled,
-  // 17.8 M -> 6.2 M samples) and costs ~8% of the frame where little is hidden (CT head, default
-  // scene: ~1%). After a frame that culled under kMinCulledShare of its pairs, the next
+  // Culling never moves an image away from the single-node one (with --ert 1 it changes nothing;
+  // with early termination it removes light that local termination keeps): it saves work. Its map
+  // (one march per pixel) pays where opaque matter hides much of the bricks behind it (turbulence:
+  // 64% of ray-brick pairs culled, 17.8 M -> 6.2 M samples) and costs ~8% of the frame where little
+  // is hidden (CT head, default scene: ~1%). After a frame that culled under kMinCulledShare of its pairs, the next
   // kCullingRestFrames frames skip it; then it is tried again (the view or transfer function may
   // have changed).
   const bool culling = request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1;

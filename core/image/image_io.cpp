@@ -9,18 +9,23 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <string_view>
 #include <unistd.h>
 
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 
 namespace kdswap {
 namespace {
 
 using WriteFn = int (*)(const char*, int, int, int, int, const float*, char*, std::size_t);
+using EncodeFn = int (*)(const char*, int, int, int, int, const float*, unsigned char**, std::size_t*, char*,
+                         std::size_t);
 using ReadFn = int (*)(const char*, int*, int*, int*, float**, char*, std::size_t);
 
 struct ImageFilesModule {
   WriteFn write = nullptr;
+  EncodeFn encode = nullptr;
   ReadFn read = nullptr;
 };
 
@@ -40,8 +45,9 @@ const ImageFilesModule& imageFilesModule() {
       return;
     }
     module.write = reinterpret_cast<WriteFn>(dlsym(handle, "kdswapWriteImageFile"));
+    module.encode = reinterpret_cast<EncodeFn>(dlsym(handle, "kdswapEncodeImage"));
     module.read = reinterpret_cast<ReadFn>(dlsym(handle, "kdswapReadImageFile"));
-    if (!module.write || !module.read) failure = path + ": not a kdswap image file module";
+    if (!module.write || !module.encode || !module.read) failure = path + ": not a kdswap image file module";
   });
   if (!failure.empty()) throw Error(failure);
   return module;
@@ -87,22 +93,47 @@ void writeImage(const std::string& path, const Image& image, const ImageWriteOpt
     }
   }
 
-  // Write next to the target, then rename: a failed write never leaves a partial file.
+  // Encoded in memory and written by writeFileAtomically, which checks every step (OpenImageIO's
+  // PNG writer reports no error on a full disk); formats that cannot encode into memory are
+  // written by OpenImageIO next to the target, read back whole, then renamed into place.
+  char why[512] = "";
+  unsigned char* bytes = nullptr;
+  std::size_t size = 0;
+  const ImageFilesModule& module = imageFilesModule();
+  const int encoded = module.encode(path.c_str(), w, h, channels, floatOut ? 1 : 0, pixels.data(), &bytes, &size, why,
+                                    sizeof why);
+  if (encoded == 0) throw Error(path + ": " + why);
+  if (encoded == 1) {
+    const std::unique_ptr<unsigned char, decltype(&std::free)> owned(bytes, &std::free);
+    writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(owned.get()), size));
+    return;
+  }
+  if (std::filesystem::is_directory(path)) throw Error(path + ": is a directory, not a file to write");
+  reportFileSizeLimitAsError();
   const std::filesystem::path target(path);
   const std::filesystem::path temp =
       target.parent_path() / (".kdswap-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
-  char why[512] = "";
-  if (!imageFilesModule().write(temp.string().c_str(), w, h, channels, floatOut ? 1 : 0, pixels.data(), why,
-                                sizeof why)) {
-    std::error_code ignored;  // the temp file is ours; the error below is what matters
+  const auto removeTemp = [&] {
+    std::error_code ignored;  // the temp file is ours; the error thrown is what matters
     std::filesystem::remove(temp, ignored);
+  };
+  if (!module.write(temp.string().c_str(), w, h, channels, floatOut ? 1 : 0, pixels.data(), why, sizeof why)) {
+    removeTemp();
     throw Error(path + ": " + why);
+  }
+  int rw = 0, rh = 0, rc = 0;
+  float* check = nullptr;
+  const bool readable = module.read(temp.string().c_str(), &rw, &rh, &rc, &check, why, sizeof why);
+  std::free(check);
+  if (!readable || rw != w || rh != h) {
+    removeTemp();
+    throw Error(path + ": the written image does not read back (" + (readable ? "wrong size" : why) +
+                "): is the disk full?");
   }
   std::error_code ec;
   std::filesystem::rename(temp, target, ec);
   if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
+    removeTemp();
     throw Error(path + ": cannot move the finished image into place: " + ec.message());
   }
 }

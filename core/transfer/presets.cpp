@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 
 namespace kdswap {
 namespace fs = std::filesystem;
@@ -59,10 +60,7 @@ TransferFunction loadTransferFunction(const std::string& presetOrPath) {
 }
 
 void saveTransferFunction(const TransferFunction& tf, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot open for writing");
-  out << tf.toJson().dump(2) << "\n";
-  if (!out) throw Error(path + ": write failed");
+  writeFileAtomically(path, tf.toJson().dump(2) + "\n");
 }
 
 }  // namespace kdswap

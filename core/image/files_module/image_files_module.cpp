@@ -7,6 +7,9 @@
 #include <cstring>
 #include <string>
 
+#include <vector>
+
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace {
@@ -37,6 +40,36 @@ extern "C" __attribute__((visibility("default"))) int kdswapWriteImageFile(const
   if (!out->open(path, spec)) return fail("cannot open for writing: " + out->geterror(), error, errorSize);
   if (!(out->write_image(OIIO::TypeDesc::FLOAT, pixels) && out->close()))
     return fail("write failed: " + out->geterror(), error, errorSize);
+  return 1;
+}
+
+//! Encodes interleaved float pixels like kdswapWriteImageFile, in the format `path` names, into a
+//! malloc'ed buffer (*bytes, *size; freed by the caller with free), so the caller writes and checks
+//! the file itself: some writers (PNG) do not report a failed write, a full disk for one.
+//! Returns 1 on success, 2 if this format cannot encode into memory (write the file instead),
+//! else 0 with a message in `error`.
+extern "C" __attribute__((visibility("default"))) int kdswapEncodeImage(const char* path, int width, int height,
+                                                                        int channels, int floatOut,
+                                                                        const float* pixels, unsigned char** bytes,
+                                                                        std::size_t* size, char* error,
+                                                                        std::size_t errorSize) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return fail("OpenImageIO cannot write this format: " + OIIO::geterror(), error, errorSize);
+  if (!out->supports("ioproxy")) return 2;
+  out->threads(1);  // as for kdswapWriteImageFile
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  if (!out->set_ioproxy(&memory)) return 2;
+  OIIO::ImageSpec spec(width, height, channels, floatOut ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  if (channels == 4) spec.alpha_channel = 3;
+  if (!out->open(path, spec)) return fail("cannot encode: " + out->geterror(), error, errorSize);
+  if (!(out->write_image(OIIO::TypeDesc::FLOAT, pixels) && out->close()))
+    return fail("encoding failed: " + out->geterror(), error, errorSize);
+  if (encoded.empty()) return fail("encoding produced no bytes", error, errorSize);
+  *bytes = static_cast<unsigned char*>(std::malloc(encoded.size()));
+  if (!*bytes) return fail("out of memory for the encoded image", error, errorSize);
+  std::memcpy(*bytes, encoded.data(), encoded.size());
+  *size = encoded.size();
   return 1;
 }
 
