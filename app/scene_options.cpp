@@ -65,7 +65,8 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
                   "a renderer that ignores the header's spacing)");
   cmd->add_option("--size", o.size, "Image size WxH (1..16384 each)")->capture_default_str();
   cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees")->capture_default_str();
-  cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii")->capture_default_str();
+  cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii (the default shows the whole volume)")
+      ->capture_default_str();
   cmd->add_option("--fov", o.fov, "Vertical field of view, degrees (orthographic: sets the frame size)")
       ->capture_default_str();
   cmd->add_option("--projection", o.projection, "perspective or orthographic")->capture_default_str();

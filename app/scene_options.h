@@ -21,7 +21,7 @@ struct SceneOptions {
   std::string spacing;  //!< overrides the data's voxel spacing (any volume or data set)
   std::string size = "512x512";
   std::string view = "30,15";
-  float distance = 2.5f, fov = 35.0f;
+  float distance = View{}.distance, fov = View{}.fovDeg;
   std::string projection = "perspective", up = "+z";
   float step = 0.5f;
   std::string tf;

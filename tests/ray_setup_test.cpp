@@ -29,6 +29,7 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
     for (const float azimuth : {0.0f, 33.0f, 90.0f, 250.0f})
       for (const bool jitter : {false, true}) {
         View view;
+        view.distance = 2.5f;  // close: the volume fills most of the small frame
         view.azimuthDeg = azimuth;
         view.elevationDeg = azimuth - 60.0f;
         view.projection = projection;

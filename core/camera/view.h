@@ -15,7 +15,9 @@ enum class UpAxis { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
 struct View {
   float azimuthDeg = 30.0f;    //!< orbit angle around the up axis; 0 looks from the "front" (-y side)
   float elevationDeg = 15.0f;  //!< angle above the equator, in (-90, 90)
-  float distance = 2.5f;       //!< eye distance from the centre, in bounding-sphere radii
+  //! Eye distance from the centre, in bounding-sphere radii. The default shows the whole sphere
+  //! (so the whole volume, from any side) within the vertical field of view: 1 / sin(35 / 2) = 3.33.
+  float distance = 3.4f;
   float fovDeg = 35.0f;        //!< vertical field of view; orthographic uses it to set the frame size
   Projection projection = Projection::Perspective;
   UpAxis up = UpAxis::PlusZ;
