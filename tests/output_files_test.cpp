@@ -118,3 +118,21 @@ TEST_CASE("kdswap animate --resume renders again a frame whose file is empty") {
   CHECK(readAll(frame) == before);
   CHECK(readImage(frame).width() == 48);
 }
+
+TEST_CASE("kdswap export past the disk's room exits 2 naming the file, and can replace its own input") {
+  const test::TempDir dir;
+  const std::string out = dir.file("phantom.nrrd");
+  const test::Run full = runLimited(8, "export --dataset phantom:32 --out " + out, dir);
+  CHECK(full.code == 2);
+  CHECK(full.err.find(out + ": write failed") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  // The volume read may be the file written: the new one is renamed into place at the end.
+  REQUIRE(test::runKdswap("export --dataset phantom:32 --out " + out).code == 0);
+  const std::string before = readAll(out);
+  REQUIRE(test::runKdswap("export --volume " + out + " --out " + out).code == 0);
+  const std::string after = readAll(out);
+  CHECK(after.substr(after.size() - 32 * 32 * 32 * 4) == before.substr(before.size() - 32 * 32 * 32 * 4));
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir.path)) files += entry.path().filename() != "stderr.txt";
+  CHECK(files == 1);  // no temporary file left behind
+}

@@ -43,31 +43,55 @@ void reportFileSizeLimitAsError() {
   (void)ignored;
 }
 
-void writeFileAtomically(const std::string& path, std::string_view bytes) {
+AtomicFile::AtomicFile(const std::string& path) : path_(path) {
   reportFileSizeLimitAsError();
   if (path.empty()) throw Error("an output file name is empty");
   refuseDirectory(path);
-  const std::filesystem::path target(path);
-  std::filesystem::path folder = target.parent_path();
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
   if (folder.empty()) folder = ".";
-  std::string temp = (folder / (".kdswap-tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw Error(path + ": cannot create a file in " + folder.string() + ": " + why());
+  temp_ = (folder / (".kdswap-tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
+  fd_ = ::mkstemp(temp_.data());
+  if (fd_ < 0) throw Error(path + ": cannot create a file in " + folder.string() + ": " + why());
   // mkstemp makes the file private (0600); an output file gets the usual permissions.
   const mode_t mask = ::umask(0);
   ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
-  std::string failure;
-  if (!writeAll(fd, bytes))
-    failure = "write failed: " + why();
-  else if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)  // EINVAL: a file that cannot sync (a pipe)
-    failure = "write failed when flushing to disk: " + why();
-  if (::close(fd) != 0 && failure.empty()) failure = "write failed when closing: " + why();
-  if (failure.empty() && ::rename(temp.c_str(), path.c_str()) != 0) failure = "cannot move the finished file into place: " + why();
-  if (!failure.empty()) {
-    ::unlink(temp.c_str());
-    throw Error(path + ": " + failure);
-  }
+  ::fchmod(fd_, 0666 & ~mask);
+}
+
+AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!temp_.empty()) ::unlink(temp_.c_str());
+}
+
+void AtomicFile::fail(const std::string& what) {
+  const std::string message = path_ + ": " + what;
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  ::unlink(temp_.c_str());
+  temp_.clear();
+  throw Error(message);
+}
+
+void AtomicFile::write(std::string_view bytes) {
+  if (fd_ < 0) throw Error(path_ + ": written after it was finished");
+  if (!writeAll(fd_, bytes)) fail("write failed: " + why());
+}
+
+void AtomicFile::commit() {
+  if (fd_ < 0) throw Error(path_ + ": finished twice");
+  if (::fsync(fd_) != 0 && errno != EINVAL && errno != EROFS)  // EINVAL: a file that cannot sync
+    fail("write failed when flushing to disk: " + why());
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0) fail("write failed when closing: " + why());
+  if (::rename(temp_.c_str(), path_.c_str()) != 0) fail("cannot move the finished file into place: " + why());
+  temp_.clear();
+}
+
+void writeFileAtomically(const std::string& path, std::string_view bytes) {
+  AtomicFile file(path);
+  file.write(bytes);
+  file.commit();
 }
 
 void appendToFile(const std::string& path, std::string_view bytes) {

@@ -8,8 +8,28 @@
 
 namespace kdswap {
 
-//! Replaces `path` with `bytes`. Throws kdswap::Error naming `path` and the cause (for example
-//! "No space left on device"); the target then keeps its old contents, or stays absent.
+//! An output file being written: bytes go to a temporary file beside `path`, which commit()
+//! renames onto `path`. Destroyed without commit() (an error, an exception), it removes the
+//! temporary file and leaves `path` as it was. Every failure is a kdswap::Error naming `path` and
+//! the cause (for example "No space left on device").
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  void write(std::string_view bytes);
+  //! Flushes to disk, closes and renames into place.
+  void commit();
+
+ private:
+  [[noreturn]] void fail(const std::string& what);
+  std::string path_, temp_;
+  int fd_ = -1;
+};
+
+//! Replaces `path` with `bytes` through an AtomicFile.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 
 //! From the first call on, a write past the file-size limit (`ulimit -f`) fails with EFBIG, which

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/util/error.h"
+#include "core/util/file_writer.h"
 
 namespace kdswap {
 namespace {
@@ -46,10 +47,6 @@ void encodeSlice(const std::vector<float>& values, NrrdSample sample, float lo, 
   }
 }
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-
 }  // namespace
 
 NrrdSample parseNrrdSample(const std::string& text, const std::string& option) {
@@ -62,15 +59,10 @@ NrrdSample parseNrrdSample(const std::string& text, const std::string& option) {
 void writeNrrd(const std::string& path, const VolumeSource& source, NrrdSample sample,
                const std::function<void(int, int)>& progress) {
   const VolumeInfo& info = source.info();
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw Error(path + ": cannot create file (" + std::strerror(errno) + ")");
-  bool ok = true;
-  auto fail = [&](const std::string& what) {
-    file.reset();
-    std::error_code ignored;
-    std::filesystem::remove(path, ignored);
-    throw Error(path + ": " + what);
-  };
+  // Beside the target, renamed into place at the end: a failure leaves no partial file, and the
+  // volume being read may be the very file being replaced.
+  AtomicFile file(path);
+  auto fail = [&](const std::string& what) { throw Error(path + ": " + what); };
   char header[1024];
   int n = std::snprintf(header, sizeof header,
                         "NRRD0004\n# written by kdswap export from %s\ntype: %s\ndimension: 3\nsizes: %d %d %d\n"
@@ -82,16 +74,16 @@ void writeNrrd(const std::string& path, const VolumeSource& source, NrrdSample s
                        double(info.minValue), double(info.maxValue));
   if (n <= 0 || n + 1 >= int(sizeof header)) fail("header too long (data set name?)");
   header[n++] = '\n';  // a blank line ends the header
-  ok = std::fwrite(header, 1, std::size_t(n), file.get()) == std::size_t(n);
+  file.write(std::string_view(header, std::size_t(n)));
   std::vector<float> slice(std::size_t(info.dims.x) * std::size_t(info.dims.y));
   std::vector<unsigned char> bytes;
-  for (int z = 0; ok && z < info.dims.z; ++z) {
+  for (int z = 0; z < info.dims.z; ++z) {
     source.read(VoxelBox{glm::ivec3(0, 0, z), glm::ivec3(info.dims.x, info.dims.y, z + 1)}, slice.data());
     encodeSlice(slice, sample, info.minValue, info.maxValue, bytes);
-    ok = std::fwrite(bytes.data(), 1, bytes.size(), file.get()) == bytes.size();
+    file.write(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     if (progress) progress(z + 1, info.dims.z);
   }
-  if (!ok || std::fflush(file.get()) != 0) fail(std::string("write failed (") + std::strerror(errno) + ")");
+  file.commit();
 }
 
 }  // namespace kdswap
