@@ -151,11 +151,13 @@ void run(const AnimateOptions& o) {
     throw Error("--frames " + std::to_string(o.frames) + ": must be from 1 to " + std::to_string(kMaxAnimationFrames));
   if (o.format != "png" && o.format != "exr") throw Error("--format \"" + o.format + "\": expected png or exr");
   if (!(o.fps > 0.0f && o.fps <= 240.0f)) throw Error("--fps must be in (0, 240]");
+  checkOutputFolder(o.outDir, "--out-dir");  // before any frame, not after the first render
   const std::vector<CameraKey> keys = o.keys.empty() ? std::vector<CameraKey>{} : loadCameraKeys(o.keys);
   Scene scene = buildScene(o.scene);
   const CameraPath path = buildPath(o, keys, scene.request.view);
   std::map<std::string, TransferFunction> transfers;  // loaded up front: a bad name fails before any frame
-  for (const std::string& name : path.transferFunctions()) transfers.emplace(name, loadTransferFunction(name));
+  for (const std::string& name : path.transferFunctions())
+    transfers.emplace(name, loadTransferOption(name, "--keys " + o.keys + ": \"tf\""));
 
   SequenceOptions so{o.outDir, o.format, o.stats, o.frames, o.resume, {}};
   so.identity = [&](int i) { return frameIdentity(o, path.frame(i)); };
@@ -230,16 +232,22 @@ void addAnimateCommand(CLI::App& app) {
   CLI::Option* orbit =
       cmd->add_option("--orbit", options->orbit, "Orbit this many degrees around the up axis")->capture_default_str();
   CLI::Option* sweep = cmd->add_option("--elevation-sweep", options->elevationSweep,
-                                       "Orbit: elevation from FROM to TO degrees over the sequence, e.g. -20,40");
-  cmd->add_option("--keys", options->keys, "Key views from a JSON file (format below)")->excludes(orbit)->excludes(sweep);
+                                       "Orbit: elevation from FROM to TO degrees over the sequence, each in (-90, 90), e.g. -20,40")
+                          ->check(nonEmpty());
+  cmd->add_option("--keys", options->keys, "Key views from a JSON file (format below)")
+      ->check(nonEmpty())
+      ->excludes(orbit)
+      ->excludes(sweep);
   cmd->add_option("--frames", options->frames, "Number of frames (1..100000)")->capture_default_str();
-  cmd->add_option("--out-dir", options->outDir, "Folder for the frames, stats and video")->capture_default_str();
+  cmd->add_option("--out-dir", options->outDir, "Folder for the frames, stats and video")
+      ->check(nonEmpty())
+      ->capture_default_str();
   cmd->add_option("--format", options->format, "Frame format: png (8-bit over black) or exr (float RGBA)")
       ->capture_default_str();
-  cmd->add_option("--stats", options->stats, "Per-frame stats as JSON lines (default DIR/stats.jsonl)");
+  cmd->add_option("--stats", options->stats, "Per-frame stats as JSON lines (default DIR/stats.jsonl)")->check(nonEmpty());
   cmd->add_flag("--phases", options->phases, "Also write each frame's compositing stages (Figure 6) as DIR/phases_NNNN.png");
   cmd->add_flag("--resume", options->resume, "Continue a stopped sequence: keep frames already written and recorded");
-  cmd->add_option("--fps", options->fps, "Frame rate of the MP4")->capture_default_str();
+  cmd->add_option("--fps", options->fps, "Frame rate of the MP4, in (0, 240]")->capture_default_str();
   cmd->add_flag("--no-video", options->noVideo, "Do not make the MP4 even if ffmpeg is on PATH");
   cmd->add_option("--stop-after", options->stopAfter, "Testing: stop as if interrupted after K rendered frames")
       ->group("");

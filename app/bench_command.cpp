@@ -4,10 +4,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +42,7 @@ struct BenchOptions {
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
   bool sparse = false, micro = false, paper = false, targets = false;
+  bool headGiven = false;  //!< --head on the command line: then it must exist (the default may be absent)
 };
 
 // Set by SIGINT; polled after every frame (lock-free atomic: safe in a signal handler).
@@ -50,9 +52,7 @@ void onBenchInterrupt(int) { gStop.store(true); }
 template <typename T>
 std::vector<T> parseList(const std::string& text, const char* option, T lo, T hi) {
   std::vector<T> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
+  for (const std::string& item : splitItems(text, ',')) {
     std::size_t used = 0;
     long long v = -1;
     try {
@@ -69,11 +69,11 @@ std::vector<T> parseList(const std::string& text, const char* option, T lo, T hi
   return out;
 }
 
-std::vector<std::string> parseNames(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(item);
+std::vector<std::string> parseNames(const std::string& text, const char* option) {
+  std::vector<std::string> out = splitItems(text, ',');
+  if (out.empty()) throw Error(std::string(option) + ": empty list");
+  for (const std::string& name : out)
+    if (name.empty()) throw Error(std::string(option) + " \"" + text + "\": empty item (a ',' too many)");
   return out;
 }
 
@@ -100,41 +100,47 @@ std::string commandLine(const BenchOptions& o) {
 
 void runGrid(const BenchOptions& o) {
   if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
-  std::unique_ptr<VolumeSource> source =
-      o.volume.empty() ? openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset) : openVolumeFile(o.volume);
-  if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
-  if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
-  const VolumeInfo& info = source->info();
+  // Every option is checked (with render's checks, app/scene_options.h) before the volume is
+  // opened or any cell runs.
   BenchGridOptions g;
   g.sizes = parseList<int>(o.sizes, "--sizes", 1, 16384);
   g.nodes = parseList<int>(o.nodes, "--nodes", 1, kMaxNodes);
-  g.strategies = parseNames(o.composite);
+  g.strategies = parseNames(o.composite, "--composite");
   for (const std::string& s : g.strategies) createStrategy(s);  // unknown names fail before any work
   g.frames = o.frames;
+  if (!std::isfinite(o.degrees) || std::abs(o.degrees) > 360.0f)
+    throw Error("--degrees must be a number from -360 to 360");
   g.degreesPerFrame = o.degrees;
-  float az = 0, el = 0;
-  if (std::sscanf(o.view.c_str(), "%f,%f", &az, &el) != 2) throw Error("--view \"" + o.view + "\": expected AZ,EL");
-  g.base.view.azimuthDeg = az, g.base.view.elevationDeg = el;
-  if (o.shading != "on" && o.shading != "off") throw Error("--shading \"" + o.shading + "\": expected on or off");
-  if (!(o.step >= 0.01f && o.step <= 16.0f)) throw Error("--step must be between 0.01 and 16 voxels");
-  if (!(o.ert > 0.0f && o.ert <= 1.0f)) throw Error("--ert must be in (0, 1]");
+  const glm::vec2 view = parseViewAngles(o.view, "--view");
+  g.base.view.azimuthDeg = view.x, g.base.view.elevationDeg = view.y;
+  checkStep(o.step);
+  checkErt(o.ert);
   g.base.settings.stepVoxels = o.step;
-  g.base.settings.shading = o.shading == "on";
+  g.base.settings.shading = parseOnOff(o.shading, "--shading");
   g.base.settings.earlyTermination = o.ert;
-  g.base.transfer = loadTransferFunction(!o.tf.empty() ? o.tf : (info.preset.empty() ? "grayscale" : info.preset));
   g.cluster.partition = parsePartition(o.partition);
   g.cluster.composite.sparse = o.sparse;
+  checkThreads(o.threads);
   g.cluster.threads = o.threads;
   g.cluster.network = networkModel(o.network);
   g.cluster.voxels = parseVoxelChoice(o.voxels);
-  g.balances = parseNames(o.balance);
+  g.balances = parseNames(o.balance, "--balance");
   g.bricksPerNode = parseList<int>(o.bricksPerNode, "--bricks-per-node", 1, 64);
   for (const std::string& b : g.balances)
     if (b != "space" && b != "cost") throw Error("--balance \"" + o.balance + "\": expected space, cost or space,cost");
-  for (double v : parseNumbers(o.speeds, ',', "--speeds")) {
-    if (!(v >= 0.01 && v <= 100.0)) throw Error("--speeds \"" + o.speeds + "\": each speed must be from 0.01 to 100");
-    g.speedPattern.push_back(v);
-  }
+  g.speedPattern = parseSpeeds(o.speeds);
+  checkOutputFolder(o.outDir, "--out-dir");
+  std::optional<TransferFunction> transfer;
+  if (!o.tf.empty()) transfer = loadTransferOption(o.tf);
+  std::optional<glm::vec3> spacing;
+  if (!o.spacing.empty()) spacing = parseSpacing(o.spacing, "--spacing");
+
+  std::unique_ptr<VolumeSource> source =
+      o.volume.empty() ? openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset) : openVolumeFile(o.volume);
+  if (spacing) source = std::make_unique<RespacedSource>(std::move(source), *spacing);
+  if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
+  const VolumeInfo& info = source->info();
+  g.base.transfer = transfer ? *transfer : loadTransferFunction(info.preset.empty() ? "grayscale" : info.preset);
   std::filesystem::create_directories(o.outDir);
 
   const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
@@ -201,6 +207,14 @@ void run(const BenchOptions& o) {
   } else if (o.paper) {
     std::printf("%s", runPaperComparison(o.frames, log, &gStop).c_str());
   } else if (o.targets) {
+    // The CT head target runs after minutes of others: a wrong --head must fail before them.
+    if (o.headGiven) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(o.head, ec))
+        throw Error("--head " + o.head + ": " +
+                    (std::filesystem::exists(o.head, ec) ? "not a regular file" : "no such file"));
+      openVolumeFile(o.head);  // validates the header: a broken file fails here too
+    }
     TargetOptions t;
     t.frames = o.frames;
     t.headPath = o.head;
@@ -239,47 +253,61 @@ void addBenchCommand(CLI::App& app) {
       "  kdswap bench --paper      the paper's sourced cells beside ours\n"
       "  kdswap bench --targets    issue 6's speed targets, MET or MISSED\n"
       "Ctrl-C stops after the current frame and writes what was measured (exit 130).\n");
-  cmd->add_option("--dataset", o->dataset, "Built-in data set NAME[:N]: phantom (head), vessels, turbulence (vorticity)");
-  cmd->add_option("--volume", o->volume, "Volume file instead of a data set");
-  cmd->add_option("--spacing", o->spacing, "Voxel spacing SX,SY,SZ instead of the data's (e.g. 1,1,1)");
+  cmd->add_option("--dataset", o->dataset,
+                  "Built-in data set NAME[:N|:WxHxD]: phantom (head), vessels, turbulence (vorticity)")
+      ->check(nonEmpty());
+  cmd->add_option("--volume", o->volume, "Volume file instead of a data set")->check(nonEmpty());
+  cmd->add_option("--spacing", o->spacing, "Voxel spacing SX,SY,SZ instead of the data's (e.g. 1,1,1)")->check(nonEmpty());
   cmd->add_option("--quantise", o->quantise, "Round the data to 8 or 16 bits first (0: as stored)");
-  cmd->add_option("--sizes", o->sizes, "Square image sides, comma-separated")->capture_default_str();
-  cmd->add_option("--nodes", o->nodes, "Node counts, comma-separated")->capture_default_str();
+  cmd->add_option("--sizes", o->sizes, "Square image sides, comma-separated, each 1..16384")->capture_default_str();
+  cmd->add_option("--nodes", o->nodes, "Node counts, comma-separated, each 1..4096")->capture_default_str();
   cmd->add_option("--composite", o->composite, "Strategies, comma-separated")->capture_default_str();
-  cmd->add_option("--frames", o->frames, "Measured frames per cell (one warm-up frame more)")->capture_default_str();
-  cmd->add_option("--degrees", o->degrees, "Azimuth turn per frame, degrees")->capture_default_str();
-  cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION")->capture_default_str();
-  cmd->add_option("--step", o->step, "Sample spacing in voxels")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "Measured frames per cell, 1..1000 (one warm-up frame more)")->capture_default_str();
+  cmd->add_option("--degrees", o->degrees, "Azimuth turn per frame, -360..360 degrees")->capture_default_str();
+  cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION in degrees (elevation in (-90, 90))")
+      ->capture_default_str();
+  cmd->add_option("--step", o->step, "Sample spacing in voxels, 0.01..16")->capture_default_str();
   cmd->add_option("--shading", o->shading, "on or off")->capture_default_str();
-  cmd->add_option("--ert", o->ert, "Early ray termination threshold (1 disables)")->capture_default_str();
-  cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)");
+  cmd->add_option("--ert", o->ert, "Early ray termination threshold, in (0, 1] (1 disables)")->capture_default_str();
+  cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)")->check(nonEmpty());
   cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
   cmd->add_option("--balance", o->balance,
                   "Plane placements to compare: space, cost or space,cost (cost cells read STRATEGY+cost)")
       ->capture_default_str();
-  cmd->add_option("--speeds", o->speeds, "Relative node speeds, repeated over each cell's nodes, e.g. 1,0.5");
+  cmd->add_option("--speeds", o->speeds, "Relative node speeds, each 0.01..100, repeated over each cell's nodes, e.g. 1,0.5")
+      ->check(nonEmpty());
   cmd->add_option("--bricks-per-node", o->bricksPerNode,
-                  "Over-decomposition levels to compare, e.g. 1,4 (cells with M > 1 read STRATEGY+bricksM)")
+                  "Over-decomposition levels to compare, each 1..64, e.g. 1,4 (cells with M > 1 read STRATEGY+bricksM)")
       ->capture_default_str();
   cmd->add_option("--network", o->network, "Network model for modelled time: ideal, cm5 or ethernet10")
       ->capture_default_str();
   cmd->add_option("--voxels", o->voxels, "Voxel storage: auto (compact above 2^23 voxels), float or compact")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Worker threads (0 = every core)")->capture_default_str();
-  cmd->add_option("--out-dir", o->outDir, "Folder for bench.csv, bench.json, speedup.png")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Worker threads, 0..1024 (0 = every core)")->capture_default_str();
+  cmd->add_option("--out-dir", o->outDir, "Folder for bench.csv, bench.json, speedup.png")
+      ->check(nonEmpty())
+      ->capture_default_str();
   cmd->add_flag("--micro", o->micro, "Measure the kernels alone");
   cmd->add_flag("--paper", o->paper, "Run the paper's sourced cells and compare");
   cmd->add_flag("--targets", o->targets, "Measure issue 6's speed targets");
-  cmd->add_option("--head", o->head, "CT head for --targets")->capture_default_str();
+  CLI::Option* head = cmd->add_option("--head", o->head,
+                                      "CT head for --targets (must exist when given; when the default is absent, "
+                                      "that target is not run)")
+                           ->check(nonEmpty())
+                           ->capture_default_str();
   cmd->add_option("--repeat", o->repeat,
-                  "With --targets: run them all N times and judge each by the median over the runs "
+                  "With --targets: run them all N times (1..20) and judge each by the median over the runs "
                   "(this machine's speed drifts between minutes)")
       ->capture_default_str();
   cmd->add_option("--vtk-ms", o->vtkMs,
                   "With --targets: VTK's times on this machine for turbulence, phantom and CT head "
-                  "(scripts/vtk_baseline.py), e.g. 250,110,230; adds 'half of VTK here' targets");
-  cmd->callback([o] { run(*o); });
+                  "(scripts/vtk_baseline.py), e.g. 250,110,230; adds 'half of VTK here' targets")
+      ->check(nonEmpty());
+  cmd->callback([o, head] {
+    o->headGiven = head->count() > 0;
+    run(*o);
+  });
 }
 
 }  // namespace kdswap

@@ -1,6 +1,7 @@
 // `kdswap export`: write a built-in data set or a volume file as one .nrrd file, optionally
 // quantised to 8 or 16 bits, so other renderers (VTK, ParaView) can be run on the same voxels.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -9,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/scene_options.h"
 #include "core/bench/quantised_source.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
@@ -29,6 +31,9 @@ void runExport(const ExportOptions& o) {
   if (o.quantise != 0 && o.quantise != 8 && o.quantise != 16) throw Error("--quantise must be 0, 8 or 16");
   if (o.out.size() < 6 || o.out.compare(o.out.size() - 5, 5, ".nrrd") != 0)
     throw Error("--out \"" + o.out + "\": expected a file name ending in .nrrd");
+  // 8-bit samples cannot keep 16-bit levels: one of the two options would be silently ignored.
+  if (o.quantise == 16 && o.type == "uint8")
+    throw Error("--type uint8 cannot hold --quantise 16's levels; use --type uint16 or float32, or --quantise 8");
   std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(o.dataset) : openVolumeFile(o.volume);
   if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
@@ -55,15 +60,18 @@ void runExport(const ExportOptions& o) {
 void addExportCommand(CLI::App& app) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* cmd = app.add_subcommand("export", "Write a data set or volume as a .nrrd file (to open it in other tools)");
-  cmd->add_option("--dataset", options->dataset, "Built-in data set NAME[:N|:WxHxD], e.g. phantom:256");
-  cmd->add_option("--volume", options->volume, "Volume file instead of a data set");
-  cmd->add_option("--spacing", options->spacing, "Voxel spacing SX,SY,SZ instead of the data's");
+  cmd->add_option("--dataset", options->dataset, "Built-in data set NAME[:N|:WxHxD], e.g. phantom:256")->check(nonEmpty());
+  cmd->add_option("--volume", options->volume, "Volume file instead of a data set")->check(nonEmpty());
+  cmd->add_option("--spacing", options->spacing, "Voxel spacing SX,SY,SZ instead of the data's")->check(nonEmpty());
   cmd->add_option("--quantise", options->quantise, "Round the data to 8 or 16 bits first (0: as stored)")
       ->capture_default_str();
   cmd->add_option("--type", options->type,
                   "Sample type: float32, uint8 or uint16 (levels of the value range, kept as 'old min/max'); "
-                  "default: the --quantise width, else float32");
-  cmd->add_option("-o,--out", options->out, "Output file (.nrrd, raw data attached)")->required();
+                  "default: the --quantise width, else float32 (uint8 with --quantise 16 is refused)")
+      ->check(nonEmpty());
+  cmd->add_option("-o,--out", options->out, "Output file (.nrrd, raw data attached; not the input file)")
+      ->required()
+      ->check(nonEmpty());
   cmd->footer(
       "Examples:\n"
       "  kdswap export --dataset phantom:256 --quantise 8 --out phantom256.nrrd\n"

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/scene_options.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/reader.h"
@@ -87,16 +88,19 @@ void addInfoCommand(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
       "info", "Describe a volume: dimensions, type, spacing, value range, histogram, memory for bricks");
-  cmd->add_option("file", options->file,
-                  "Volume file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
-                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)");
-  cmd->add_option("--dataset", options->dataset, "Built-in data set NAME[:N|:WxHxD] instead of a file, e.g. phantom:64");
+  // Positional or --volume, as every other subcommand names its volume.
+  cmd->add_option("file,--volume", options->file,
+                  "Volume file (positional or --volume FILE): .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
+                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)")
+      ->check(nonEmpty());
+  cmd->add_option("--dataset", options->dataset, "Built-in data set NAME[:N|:WxHxD] instead of a file, e.g. phantom:64")
+      ->check(nonEmpty());
   cmd->add_option("--raw-dims", options->rawDims, "Raw files: dimensions WxHxD");
   cmd->add_option("--raw-type", options->rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
   cmd->add_option("--raw-endian", options->rawEndian, "Raw files: little (default) or big");
   cmd->add_option("--raw-spacing", options->rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
   cmd->add_option("--raw-skip", options->rawSkip, "Raw files: header bytes to skip");
-  cmd->add_option("--bins", options->bins, "Histogram bins")->capture_default_str();
+  cmd->add_option("--bins", options->bins, "Histogram bins, 1..1024")->capture_default_str();
   cmd->add_flag("--json", options->json, "Print JSON: dims, type, spacing, range, histogram, bytes");
   cmd->callback([options] { runInfo(*options); });
 }

@@ -1,6 +1,7 @@
 // kdswap: command-line entry. Parses the subcommand, runs it, turns errors into one line + exit 2.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,20 @@ int main(int argc, char** argv) {
   kdswap::addInfoCommand(app);
   kdswap::addExportCommand(app);
   app.footer("Run 'kdswap SUBCOMMAND --help' for the options of each subcommand.");
+  // CLI11 would report an unknown first word as "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    const CLI::App& all = app;  // the const overload: every subcommand, not only the parsed ones
+    for (const CLI::App* sub : all.get_subcommands([](const CLI::App*) { return true; })) {
+      known = known || sub->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "kdswap: unknown subcommand \"%s\" (expected one of %s)\n", argv[1], names.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -35,18 +35,27 @@ ImageWriteOptions parseBackground(const std::string& text) {
     w.background.reset();
     return w;
   }
-  float r, g, b;
-  char extra;
-  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &r, &g, &b, &extra) != 3 || r < 0 || g < 0 || b < 0 || r > 1 || g > 1 || b > 1)
-    throw Error("--background \"" + text + "\": expected R,G,B in [0,1] or none");
-  w.background = glm::vec3(r, g, b);
+  const std::string expected = "--background \"" + text + "\": expected R,G,B in [0,1] or none";
+  std::vector<double> rgb;
+  try {
+    rgb = parseNumbers(text, ',', "--background");  // refuses nan and inf, which sscanf's %f reads
+  } catch (const Error&) {
+    throw Error(expected);
+  }
+  if (rgb.size() != 3) throw Error(expected);
+  for (double c : rgb)
+    if (!(c >= 0.0 && c <= 1.0)) throw Error(expected);
+  w.background = glm::vec3(float(rgb[0]), float(rgb[1]), float(rgb[2]));
   return w;
 }
 
+// The extensions isSupportedImagePath accepts, as writeImage's message lists them.
+constexpr const char* kImageExtensions = ".png, .exr, .tif, .tiff or .jpg";
+
 void checkWritable(const std::string& path, const char* option) {
-  if (path.empty()) return;
+  if (path.empty()) throw Error(std::string(option) + ": empty value");
   if (!isSupportedImagePath(path) && std::string(option) != "--stats")
-    throw Error(std::string(option) + " " + path + ": unsupported image extension (expected .png, .exr, .tif or .jpg)");
+    throw Error(std::string(option) + " " + path + ": unsupported image extension (expected " + kImageExtensions + ")");
   const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
@@ -56,8 +65,9 @@ void writeStats(const std::string& path, const nlohmann::json& j) { writeFileAto
 
 void run(const RenderOptions& o) {
   checkWritable(o.out, "--out");
-  checkWritable(o.phases, "--phases");
+  if (!o.phases.empty()) checkWritable(o.phases, "--phases");
   if (!o.stats.empty()) checkWritable(o.stats, "--stats");
+  if (!o.phasesDir.empty()) checkOutputFolder(o.phasesDir, "--phases-dir");
   const ImageWriteOptions writeOptions = parseBackground(o.background);
   Scene scene = buildScene(o.scene);
   scene.request.recordPhases = !o.phases.empty() || !o.phasesDir.empty();
@@ -114,13 +124,19 @@ void addRenderCommand(CLI::App& app) {
       "  kdswap render --volume ../shared/data/cthead.nhdr --up -z --tf ct-bone --nodes 16 --verify\n");
   addSceneOptions(cmd, options->scene);
   addClusterOptions(cmd, options->scene);
-  cmd->add_option("--out,-o", options->out, "Output image: .png (8-bit over --background), .exr (float RGBA), .tif")
+  cmd->add_option("--out,-o", options->out,
+                  std::string("Output image, by extension: ") + kImageExtensions +
+                      " (.exr: float RGBA; the others 8-bit, over --background)")
+      ->check(nonEmpty())
       ->capture_default_str();
-  cmd->add_option("--background", options->background, "PNG background R,G,B in [0,1], or none for RGBA")
+  cmd->add_option("--background", options->background, "Background R,G,B in [0,1] for 8-bit images, or none for RGBA")
+      ->check(nonEmpty())
       ->capture_default_str();
-  cmd->add_option("--stats", options->stats, "Write the frame's figures as JSON (stable keys, see README)");
-  cmd->add_option("--phases", options->phases, "Write the compositing stages as one picture (paper Figure 6)");
-  cmd->add_option("--phases-dir", options->phasesDir, "Write every stage of every node as its own PNG in DIR");
+  cmd->add_option("--stats", options->stats, "Write the frame's figures as JSON (stable keys, see README)")->check(nonEmpty());
+  cmd->add_option("--phases", options->phases, "Write the compositing stages as one picture (paper Figure 6)")
+      ->check(nonEmpty());
+  cmd->add_option("--phases-dir", options->phasesDir, "Write every stage of every node as its own PNG in DIR")
+      ->check(nonEmpty());
   cmd->add_flag("--verify", options->verify,
                 "Also render the single-node reference; exit 1 if they differ by more than 1e-5 (plus the "
                 "early-termination bound when --ert < 1)");

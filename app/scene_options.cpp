@@ -2,6 +2,7 @@
 #include "app/scene_options.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <vector>
 
@@ -14,11 +15,23 @@
 
 namespace kdswap {
 
+std::vector<std::string> splitItems(const std::string& text, char separator) {
+  // Not std::getline: it drops a trailing empty item, so "64x" would read as "64".
+  std::vector<std::string> items;
+  if (text.empty()) return items;
+  for (std::size_t start = 0;;) {
+    const std::size_t end = text.find(separator, start);
+    items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return items;
+    start = end + 1;
+  }
+}
+
 std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& option) {
   std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, separator)) {
+  for (const std::string& item : splitItems(text, separator)) {
+    if (item.empty())
+      throw Error(option + " \"" + text + "\": empty item (a '" + std::string(1, separator) + "' too many)");
     std::size_t used = 0;
     double v = 0;
     try {
@@ -26,11 +39,94 @@ std::vector<double> parseNumbers(const std::string& text, char separator, const 
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != item.size() || item.empty() || !std::isfinite(v))
+    if (used != item.size() || !std::isfinite(v))
       throw Error(option + " \"" + text + "\": \"" + item + "\" is not a number");
     values.push_back(v);
   }
   return values;
+}
+
+CLI::Validator nonEmpty() {
+  return CLI::Validator([](const std::string& value) { return value.empty() ? std::string("empty value") : std::string(); },
+                        "", "non-empty");
+}
+
+glm::vec2 parseViewAngles(const std::string& text, const std::string& option) {
+  const auto angles = parseNumbers(text, ',', option);
+  if (angles.size() != 2) throw Error(option + " \"" + text + "\": expected AZIMUTH,ELEVATION in degrees");
+  const glm::vec2 v{float(angles[0]), float(angles[1])};
+  if (!std::isfinite(v.x)) throw Error(option + " \"" + text + "\": azimuth is too large for a float");
+  // The same range as --elevation-sweep and key files; the camera is undefined at the poles.
+  if (!(v.y > -90.0f && v.y < 90.0f))
+    throw Error(option + " \"" + text + "\": elevation must be in (-90, 90) degrees");
+  return v;
+}
+
+glm::vec2 parseValueRange(const std::string& text, const std::string& option) {
+  const auto range = parseNumbers(text, ',', option);
+  if (range.size() != 2 || !(range[1] > range[0]))
+    throw Error(option + " \"" + text + "\": expected MIN,MAX with MIN < MAX");
+  // Rendering maps values with float scale 1 / (MAX - MIN) and bias -MIN / (MAX - MIN)
+  // (normalisingScaleBias): each must be finite, or every sample maps to nothing.
+  const glm::vec2 r{float(range[0]), float(range[1])};
+  const float span = r.y - r.x;
+  if (!std::isfinite(r.x) || !std::isfinite(r.y) || !(span > 0.0f) || !std::isfinite(span) ||
+      !std::isfinite(1.0f / span) || !std::isfinite(r.x / span))
+    throw Error(option + " \"" + text + "\": MIN, MAX and MAX - MIN must be finite floats (below 3.4e38 in size) "
+                "and MIN, MAX must differ at float precision");
+  return r;
+}
+
+bool parseOnOff(const std::string& text, const std::string& option) {
+  if (text != "on" && text != "off") throw Error(option + " \"" + text + "\": expected on or off");
+  return text == "on";
+}
+
+void checkStep(float step, const std::string& option) {
+  if (!(step >= 0.01f && step <= 16.0f)) throw Error(option + " must be between 0.01 and 16 voxels");
+}
+
+void checkErt(float ert, const std::string& option) {
+  if (!(ert > 0.0f && ert <= 1.0f)) throw Error(option + " must be in (0, 1]");
+}
+
+void checkThreads(int threads, const std::string& option) {
+  if (threads < 0 || threads > 1024) throw Error(option + " " + std::to_string(threads) + ": must be from 0 to 1024");
+}
+
+std::vector<double> parseSpeeds(const std::string& text, const std::string& option) {
+  const auto speeds = parseNumbers(text, ',', option);
+  for (double v : speeds)
+    if (!(v >= 0.01 && v <= 100.0)) throw Error(option + " \"" + text + "\": each speed must be from 0.01 to 100");
+  return speeds;
+}
+
+TransferFunction loadTransferOption(const std::string& presetOrPath, const std::string& option) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(presetOrPath, ec))
+    throw Error(option + " " + presetOrPath + ": is a folder; expected a preset name or a JSON file");
+  try {
+    return loadTransferFunction(presetOrPath);
+  } catch (const Error& e) {
+    throw Error(option + " " + e.what());  // e.what() starts with the name or path
+  }
+}
+
+void checkOutputFolder(const std::string& path, const std::string& option) {
+  if (path.empty()) throw Error(option + ": empty value");
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+    throw Error(option + " " + path + ": exists and is not a folder");
+  // The nearest existing ancestor must be a folder too ("a/file/b" cannot be made either).
+  for (std::filesystem::path p = std::filesystem::absolute(path, ec).parent_path(); !p.empty(); p = p.parent_path()) {
+    const auto s = std::filesystem::status(p, ec);
+    if (std::filesystem::exists(s)) {
+      if (!std::filesystem::is_directory(s)) throw Error(option + " " + path + ": " + p.string() + " is not a folder");
+      break;
+    }
+    if (p == p.parent_path()) break;
+  }
 }
 
 void parseImageSize(const std::string& text, int& width, int& height) {
@@ -52,33 +148,41 @@ void parseImageSize(const std::string& text, int& width, int& height) {
 void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--dataset", o.dataset,
                   "Built-in procedural data set NAME[:N|:WxHxD]: phantom (Shepp-Logan head), vessels, "
-                  "turbulence. Default phantom:128");
+                  "turbulence. Default phantom:128")
+      ->check(nonEmpty());
   cmd->add_option("--volume", o.volume,
                   "Volume file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
-                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)");
+                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)")
+      ->check(nonEmpty());
   cmd->add_option("--raw-dims", o.rawDims, "Raw files: dimensions WxHxD");
   cmd->add_option("--raw-type", o.rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
   cmd->add_option("--raw-endian", o.rawEndian, "Raw files: little or big")->capture_default_str();
   cmd->add_option("--raw-spacing", o.rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
   cmd->add_option("--spacing", o.spacing,
                   "Voxel spacing SX,SY,SZ instead of the data's, for any volume (e.g. 1,1,1 to compare with "
-                  "a renderer that ignores the header's spacing)");
-  cmd->add_option("--size", o.size, "Image size WxH (1..16384 each)")->capture_default_str();
-  cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees")->capture_default_str();
-  cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii (the default shows the whole volume)")
+                  "a renderer that ignores the header's spacing)")
+      ->check(nonEmpty());
+  cmd->add_option("--size", o.size, "Image size WxH (1..16384 each)")->check(nonEmpty())->capture_default_str();
+  cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees (elevation in (-90, 90))")
+      ->check(nonEmpty())
       ->capture_default_str();
-  cmd->add_option("--fov", o.fov, "Vertical field of view, degrees (orthographic: sets the frame size)")
+  cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii, in (0, 1000); the default shows the whole volume")
+      ->capture_default_str();
+  cmd->add_option("--fov", o.fov, "Vertical field of view, 1..170 degrees (orthographic: sets the frame size)")
       ->capture_default_str();
   cmd->add_option("--projection", o.projection, "perspective or orthographic")->capture_default_str();
   cmd->add_option("--up", o.up, "Volume axis pointing up on screen: +x -x +y -y +z -z")->capture_default_str();
-  cmd->add_option("--step", o.step, "Sample spacing in voxels (global lattice; opacity is corrected for it)")
+  cmd->add_option("--step", o.step, "Sample spacing in voxels, 0.01..16 (global lattice; opacity is corrected for it)")
       ->capture_default_str();
   cmd->add_option("--tf", o.tf, "Transfer function: a preset name (see assets/presets) or a JSON file "
-                                "(kdswap or ParaView colour map). Default: the data set's preset");
+                                "(kdswap or ParaView colour map). Default: the data set's preset")
+      ->check(nonEmpty());
   cmd->add_option("--shading", o.shading, "Phong shading from precomputed gradients: on or off")->capture_default_str();
   cmd->add_option("--jitter", o.jitter, "Per-ray lattice phase against ring artefacts: on or off")->capture_default_str();
-  cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold (1 disables)")->capture_default_str();
-  cmd->add_option("--range", o.range, "Scalar range MIN,MAX mapped to [0,1] (default: the data's range)");
+  cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold, in (0, 1] (1 disables)")->capture_default_str();
+  cmd->add_option("--range", o.range,
+                  "Scalar range MIN,MAX mapped to [0,1], finite floats with MIN < MAX (default: the data's range)")
+      ->check(nonEmpty());
 }
 
 void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
@@ -88,15 +192,17 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
   cmd->add_flag("--sparse", o.sparse, "Send only the bounding rectangle of non-empty pixels");
   cmd->add_option("--radices", o.radices,
-                  "radix-k: group size of each round, e.g. 4,2 (product = --nodes; default: prime factors of P in rounds of at most 8, e.g. 64 -> 8,8)");
-  cmd->add_option("--threads", o.threads, "Worker threads (0 = every core)")->capture_default_str();
+                  "--composite radix-k only: group size of each round, e.g. 4,2 (each 2..4096, product = --nodes; default: prime factors of P in rounds of at most 8, e.g. 64 -> 8,8)")
+      ->check(nonEmpty());
+  cmd->add_option("--threads", o.threads, "Worker threads, 0..1024 (0 = every core)")->capture_default_str();
   cmd->add_option("--balance", o.balance,
                   "Plane placement: space (halve space, as the paper) or cost (balance the work estimated "
                   "from the transfer function: visible blocks cost more than empty ones)")
       ->capture_default_str();
   cmd->add_option("--speeds", o.speeds,
-                  "Relative node speeds, e.g. 1,0.5 (repeated over the P nodes): partitions follow them and "
-                  "modelled times divide each node's work by its speed");
+                  "Relative node speeds, each 0.01..100, e.g. 1,0.5 (repeated over the P nodes): partitions follow "
+                  "them and modelled times divide each node's work by its speed")
+      ->check(nonEmpty());
   cmd->add_option("--bricks-per-node", o.bricksPerNode,
                   "Over-decomposition: cut each node's brick into this many (1..64), handed out on demand "
                   "each frame so fast or idle nodes take work from busy ones")
@@ -110,17 +216,19 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
                   "integers, 8 B: half the memory, 16-bit precision) or auto (compact above 2^23 voxels)")
       ->capture_default_str();
   cmd->add_option("--stall-timeout", o.stallSeconds,
-                  "Abort a frame when nodes wait and no node works or sends for this many seconds, naming who waits on whom "
+                  "Abort a frame when nodes wait and no node works or sends for this many seconds, in (0, 86400], naming who waits on whom "
                   "(a long render is never cut short)")
       ->capture_default_str();
   cmd->add_flag("--checksums", o.checksums, "Checksum every message and refuse corrupted ones");
   cmd->add_option("--node-execution", o.nodeExecution,
                   "tasks: one oneTBB task per node, waits suspend (default); threads: one OS thread per node "
                   "(the sanitizer builds' default)")
+      ->check(nonEmpty())
       ->group("Testing");
   cmd->add_option("--inject-fault", o.injectFault,
                   "Testing: KIND:NODE[:MESSAGE[:DELAY_S]] with KIND throw-render, throw-composite, drop, delay "
                   "or corrupt; the first frame fails with an error naming the node")
+      ->check(nonEmpty())
       ->group("Testing");
 }
 
@@ -153,31 +261,23 @@ Scene buildScene(const SceneOptions& o) {
 
   FrameRequest& r = scene.request;
   parseImageSize(o.size, r.width, r.height);
-  const auto angles = parseNumbers(o.view, ',', "--view");
-  if (angles.size() != 2) throw Error("--view \"" + o.view + "\": expected AZIMUTH,ELEVATION in degrees");
-  r.view.azimuthDeg = float(angles[0]);
-  r.view.elevationDeg = float(angles[1]);
+  const glm::vec2 angles = parseViewAngles(o.view, "--view");
+  r.view.azimuthDeg = angles.x;
+  r.view.elevationDeg = angles.y;
   if (!(o.distance > 0.0f && o.distance < 1000.0f)) throw Error("--distance must be between 0 and 1000 radii");
   r.view.distance = o.distance;
   if (!(o.fov >= 1.0f && o.fov <= 170.0f)) throw Error("--fov must be between 1 and 170 degrees");
   r.view.fovDeg = o.fov;
   r.view.projection = parseProjection(o.projection);
   r.view.up = parseUpAxis(o.up);
-  if (!(o.step >= 0.01f && o.step <= 16.0f)) throw Error("--step must be between 0.01 and 16 voxels");
+  checkStep(o.step);
   r.settings.stepVoxels = o.step;
-  if (o.shading != "on" && o.shading != "off") throw Error("--shading \"" + o.shading + "\": expected on or off");
-  r.settings.shading = o.shading == "on";
-  if (o.jitter != "on" && o.jitter != "off") throw Error("--jitter \"" + o.jitter + "\": expected on or off");
-  r.settings.jitter = o.jitter == "on";
-  if (!(o.ert > 0.0f && o.ert <= 1.0f)) throw Error("--ert must be in (0, 1]");
+  r.settings.shading = parseOnOff(o.shading, "--shading");
+  r.settings.jitter = parseOnOff(o.jitter, "--jitter");
+  checkErt(o.ert);
   r.settings.earlyTermination = o.ert;
-  if (!o.range.empty()) {
-    const auto range = parseNumbers(o.range, ',', "--range");
-    if (range.size() != 2 || !(range[1] > range[0])) throw Error("--range \"" + o.range + "\": expected MIN,MAX with MIN < MAX");
-    r.settings.valueRange = glm::vec2(float(range[0]), float(range[1]));
-  }
-  const std::string tf = !o.tf.empty() ? o.tf : (!info.preset.empty() ? info.preset : "grayscale");
-  r.transfer = loadTransferFunction(tf);
+  if (!o.range.empty()) r.settings.valueRange = parseValueRange(o.range, "--range");
+  r.transfer = !o.tf.empty() ? loadTransferOption(o.tf) : loadTransferFunction(!info.preset.empty() ? info.preset : "grayscale");
 
   ClusterOptions& c = scene.cluster;
   c.nodes = o.nodes;
@@ -185,13 +285,16 @@ Scene buildScene(const SceneOptions& o) {
   c.strategy = o.composite;
   c.partition = parsePartition(o.partition);
   c.composite.sparse = o.sparse;
+  // Only radix-k reads them: with another strategy they would be silently ignored.
+  if (!o.radices.empty() && o.composite != "radix-k")
+    throw Error("--radices goes with --composite radix-k (the strategy is " + o.composite + ")");
   if (!o.radices.empty())
     for (double k : parseNumbers(o.radices, ',', "--radices")) {
       if (k < 2 || k > kMaxNodes || k != std::floor(k))
         throw Error("--radices \"" + o.radices + "\": each radix must be a whole number from 2 to " + std::to_string(kMaxNodes));
       c.composite.radices.push_back(int(k));
     }
-  if (o.threads < 0 || o.threads > 1024) throw Error("--threads must be from 0 to 1024");
+  checkThreads(o.threads);
   c.threads = o.threads;
   if (!(o.stallSeconds > 0.0 && o.stallSeconds <= 86400.0)) throw Error("--stall-timeout must be between 0 and 86400 seconds");
   c.stallSeconds = o.stallSeconds;
@@ -207,9 +310,7 @@ Scene buildScene(const SceneOptions& o) {
   c.balanceTransfer = r.transfer;
   c.balanceRange = resolveValueRange(r.settings, info);
   if (!o.speeds.empty()) {
-    const auto speeds = parseNumbers(o.speeds, ',', "--speeds");
-    for (double v : speeds)
-      if (!(v >= 0.01 && v <= 100.0)) throw Error("--speeds \"" + o.speeds + "\": each speed must be from 0.01 to 100");
+    const auto speeds = parseSpeeds(o.speeds);
     for (int n = 0; n < c.nodes; ++n) c.speeds.push_back(speeds[std::size_t(n) % speeds.size()]);
   }
   try {

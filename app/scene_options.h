@@ -7,9 +7,11 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/vec2.hpp>
 
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
+#include "core/transfer/transfer_function.h"
 #include "core/volume/volume_source.h"
 
 namespace kdswap {
@@ -61,9 +63,32 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& options);
 Scene buildScene(const SceneOptions& options);
 //! "WxH" -> (w, h), each 1..16384. Throws kdswap::Error.
 void parseImageSize(const std::string& text, int& width, int& height);
+//! The items between `separator`s, empty ones kept ("1,,2," -> {"1", "", "2", ""}; "" -> {}).
+std::vector<std::string> splitItems(const std::string& text, char separator);
 //! The value of `option` as finite numbers between `separator`s ("1,0.5" -> {1, 0.5}; "" -> {}).
 //! Ranges are the caller's to check. Throws kdswap::Error naming `option`, the text and the item
-//! that is not a number (an empty item, as in "1,,2", is not one).
+//! that is not a number (an empty item, as in "1,,2" or "1,2,", is not one).
 std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& option);
+
+// Checks shared by every subcommand that renders (render, animate, bench, kdswap-mpi), so each
+// option is validated the same way wherever it appears. Each throws kdswap::Error naming `option`.
+
+//! A CLI11 check refusing an empty value: `--volume ""` is a mistake, not "the default".
+CLI::Validator nonEmpty();
+//! "AZIMUTH,ELEVATION" in degrees: azimuth any finite float, elevation in (-90, 90).
+glm::vec2 parseViewAngles(const std::string& text, const std::string& option);
+//! "MIN,MAX" mapped to [0, 1]: finite floats whose difference and its reciprocal are finite.
+glm::vec2 parseValueRange(const std::string& text, const std::string& option);
+//! "on" -> true, "off" -> false.
+bool parseOnOff(const std::string& text, const std::string& option);
+void checkStep(float step, const std::string& option = "--step");        //!< 0.01..16 voxels
+void checkErt(float ert, const std::string& option = "--ert");           //!< (0, 1]
+void checkThreads(int threads, const std::string& option = "--threads");  //!< 0..1024
+//! "1,0.5,..." each from 0.01 to 100; "" -> {}.
+std::vector<double> parseSpeeds(const std::string& text, const std::string& option = "--speeds");
+//! A preset name or a JSON file; a folder is named as one (loadTransferFunction would call it missing).
+TransferFunction loadTransferOption(const std::string& presetOrPath, const std::string& option = "--tf");
+//! An output folder that exists or can be made: refuses an existing file of that name up front.
+void checkOutputFolder(const std::string& path, const std::string& option);
 
 }  // namespace kdswap

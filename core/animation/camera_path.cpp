@@ -38,9 +38,17 @@ std::vector<ResolvedKey> resolveKeys(const View& base, const std::vector<CameraK
 
 float readNumber(const nlohmann::json& key, const char* name, const std::string& where, std::size_t index) {
   const nlohmann::json& v = key.at(name);
-  if (!v.is_number() || !std::isfinite(v.get<double>()))
-    throw Error(where + ": key " + std::to_string(index) + ": \"" + name + "\" must be a number");
+  // Checked as float too: 1e300 is a finite double but an infinite float angle.
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || !std::isfinite(v.get<float>()))
+    throw Error(where + ": key " + std::to_string(index) + ": \"" + name + "\" must be a finite number");
   return v.get<float>();
+}
+
+//! e.what() without nlohmann's "[json.exception.out_of_range.406] " prefix.
+std::string jsonReason(const nlohmann::json::exception& e) {
+  const std::string what = e.what();
+  const std::size_t end = what.find("] ");
+  return what.compare(0, 1, "[") == 0 && end != std::string::npos ? what.substr(end + 2) : what;
 }
 
 }  // namespace
@@ -144,6 +152,9 @@ std::vector<CameraKey> parseCameraKeys(const nlohmann::json& j, const std::strin
 }
 
 std::vector<CameraKey> loadCameraKeys(const std::string& path) {
+  std::error_code ec;
+  // A folder opens as a stream on Linux and fails only when read, with a library message.
+  if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a key file");
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open the key file");
   nlohmann::json j;
@@ -151,6 +162,10 @@ std::vector<CameraKey> loadCameraKeys(const std::string& path) {
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw Error(path + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+  } catch (const nlohmann::json::out_of_range& e) {  // 406: a number too large for a double
+    throw Error(path + ": not valid JSON: a number is out of range (" + jsonReason(e) + ")");
+  } catch (const std::exception& e) {  // a read error from the stream
+    throw Error(path + ": cannot read the key file (" + e.what() + ")");
   }
   std::vector<CameraKey> keys = parseCameraKeys(j, path);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
