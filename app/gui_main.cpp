@@ -7,6 +7,7 @@
 #include "core/util/error.h"
 #include "core/util/memory.h"
 #include "ui/gui_app.h"
+#include "ui/printable_text.h"
 
 int main(int argc, char** argv) {
   kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
@@ -56,13 +57,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "kdswap-gui: %s\n", e.what());
+    std::fprintf(stderr, "kdswap-gui: %s\n", kdswap::printableText(e.what()).c_str());
     return 2;
   } catch (const kdswap::Error& e) {
-    std::fprintf(stderr, "kdswap-gui: %s\n", e.what());
+    std::fprintf(stderr, "kdswap-gui: %s\n", kdswap::printableText(e.what()).c_str());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "kdswap-gui: unexpected error: %s\n", e.what());
+    std::fprintf(stderr, "kdswap-gui: unexpected error: %s\n", kdswap::printableText(e.what()).c_str());
     return 2;
   }
 }

@@ -28,6 +28,7 @@
 #include "ui/frame_clock.h"
 #include "ui/input_script.h"
 #include "ui/panels.h"
+#include "ui/printable_text.h"
 #include "ui/state_dump.h"
 
 namespace kdswap {
@@ -333,7 +334,7 @@ class GuiLoop {
       writeJson(options_.dumpState, j, "state dump");
     }
     if (options_.frames > 0 || script_)
-      for (const std::string& e : state_.errors) std::fprintf(stderr, "kdswap-gui: %s\n", e.c_str());
+      for (const std::string& e : state_.errors) std::fprintf(stderr, "kdswap-gui: %s\n", printableText(e).c_str());
   }
 
   const GuiOptions& options_;

@@ -2,6 +2,8 @@
 // collapsed. They read snapshots core produced and edit the user's intent; none renders pixels.
 #pragma once
 
+#include <string>
+
 #include <imgui.h>
 
 #include "ui/gui_state.h"
@@ -19,6 +21,23 @@ inline ImU32 nodeColour(int rank, float alpha = 1.0f) {
   const float hue = float(rank) * 0.618034f;  // golden-ratio steps keep neighbours apart
   return ImColor::HSV(hue - float(int(hue)), 0.65f, 0.95f, alpha);
 }
+
+//! "1 node", "8 nodes": a count with its noun, singular for one.
+inline std::string counted(long long n, const char* noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+//! `text` shortened with "..." to fit `width` pixels in the current font (whole if it fits).
+std::string fitText(const std::string& text, float width);
+//! TextUnformatted that ends in "..." when `text` is wider than the space left on the line, with
+//! the whole text in a tooltip then.
+void textFitted(const std::string& text, bool disabled = false);
+//! SameLine() when an item `width` pixels wide still fits on the current line, else a new line.
+void sameLineIfFits(float width);
+//! Width of a button showing `label` (frame padding included).
+float buttonWidth(const char* label);
+//! Width of a widget `item` pixels wide followed by its `label`.
+float labelledWidth(float item, const char* label);
 
 //! The view a fresh scene starts from (and R restores): the core defaults with the user's
 //! projection and up axis kept.

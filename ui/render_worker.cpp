@@ -2,6 +2,8 @@
 #include "ui/render_worker.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 
 #if defined(__linux__)
 #include <sys/resource.h>
@@ -51,6 +53,14 @@ std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data) {
   const std::string name = data.substr(0, data.find(':'));
   const std::vector<std::string> names = datasetNames();
   if (std::find(names.begin(), names.end(), name) != names.end()) return openDataset(data);
+  // Neither a built-in name nor a file: say what would have been accepted.
+  std::string builtIns;
+  for (const std::string& n : names) builtIns += (builtIns.empty() ? "" : ", ") + n;
+  const std::string builtIn = "a built-in data set NAME[:SIZE] (" + builtIns + "; e.g. phantom:128)";
+  if (data.empty()) throw Error("no data set given: expected " + builtIn + " or a volume file");
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::status(data, ec)))
+    throw Error("\"" + data + "\": no such file, and not " + builtIn);
   return openVolumeFile(data);
 }
 

@@ -17,6 +17,7 @@
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
 #include "ui/frame_pixels.h"
+#include "ui/histogram.h"
 
 namespace kdswap {
 
@@ -33,7 +34,7 @@ struct SceneSnapshot {
   SceneSpec spec;
   VolumeInfo info;
   KdTree tree;
-  std::vector<float> histogram;                //!< see computeHistogram
+  Histogram histogram;                         //!< see computeHistogram
   std::shared_ptr<const VolumeSource> source;  //!< thread-safe reads, shared with the sweep
   double distributeSeconds = 0;
   double buildSeconds = 0;

@@ -2,11 +2,15 @@
 // rebuild the cluster in the background; the previous scene stays until the new one is ready.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "core/cluster/virtual_cluster.h"
 #include "core/composite/registry.h"
 #include "core/util/error.h"
 #include "ui/panels.h"
@@ -16,26 +20,62 @@ namespace {
 
 const int kImageSizes[] = {128, 256, 384, 512, 768, 1024};
 
+// A narrow panel (little room beside the widgets for their labels) puts each label above its
+// widget, and the widgets take the whole width.
+bool gNarrow = false;
+
+//! The ImGui label for a widget: `label` itself, or, when narrow, "##label" after the label has
+//! been written on a line of its own.
+std::string field(const char* label) {
+  if (!gNarrow) return label;
+  ImGui::TextUnformatted(label);
+  return std::string("##") + label;
+}
+
 void section(const char* title) {
   ImGui::Spacing();
   ImGui::TextColored(ImVec4(0.55f, 0.75f, 1.0f, 1.0f), "%s", title);
   ImGui::Separator();
 }
 
+// What the data combo shows for a choice: a built-in spec as it is, a file by its name (with
+// its folder when another choice has the same name), so the end of a long path is never cut off.
+std::string choiceLabel(const std::string& choice, const std::vector<std::string>& all) {
+  namespace fs = std::filesystem;
+  if (choice.find('/') == std::string::npos && choice.find('\\') == std::string::npos) return choice;
+  const fs::path path(choice);
+  const std::string name = path.filename().string();
+  for (const std::string& other : all) {
+    std::error_code ec;
+    if (other != choice && fs::path(other).filename().string() == name && !fs::equivalent(other, choice, ec))
+      return (path.parent_path().filename() / path.filename()).string();
+  }
+  return name.empty() ? choice : name;
+}
+
 void drawDataSection(GuiState& state) {
   SceneSpec& scene = state.scene;
-  if (ImGui::BeginCombo("data", scene.data.c_str())) {
-    for (const std::string& choice : state.dataChoices)
-      if (ImGui::Selectable(choice.c_str(), choice == scene.data)) {
+  const std::string current = choiceLabel(scene.data, state.dataChoices);
+  if (ImGui::BeginCombo(field("data").c_str(), fitText(current, ImGui::CalcItemWidth() - ImGui::GetFrameHeight() - 8).c_str())) {
+    for (const std::string& choice : state.dataChoices) {
+      const std::string shown = choiceLabel(choice, state.dataChoices), label = shown + "##" + choice;
+      if (ImGui::Selectable(label.c_str(), choice == scene.data)) {
         scene.data = choice;
         state.tfEdited = false;  // a new data set brings its own preset
         state.requestFrame(false);
       }
+      if (ImGui::IsItemHovered() && shown != choice) ImGui::SetTooltip("%s", choice.c_str());
+    }
     ImGui::EndCombo();
+  } else if (ImGui::IsItemHovered()) {
+    std::error_code ec;
+    const std::filesystem::path full = std::filesystem::absolute(scene.data, ec).lexically_normal();
+    ImGui::SetTooltip("%s", current == scene.data || ec ? scene.data.c_str() : full.string().c_str());
   }
   std::string& typed = state.settings.typedData;
-  ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - 52);
-  const bool entered = ImGui::InputTextWithHint("##path", "file path or name:size", &typed, ImGuiInputTextFlags_EnterReturnsTrue);
+  const float open = buttonWidth("Open") + ImGui::GetStyle().ItemSpacing.x;
+  ImGui::SetNextItemWidth(std::max(40.0f, ImGui::GetContentRegionAvail().x - open));
+  const bool entered = ImGui::InputTextWithHint("##path", "path or name:size", &typed, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Open") || entered) && !typed.empty()) {
     scene.data = typed;
@@ -44,10 +84,12 @@ void drawDataSection(GuiState& state) {
   }
   if (state.sceneShown) {
     const VolumeInfo& info = state.sceneShown->info;
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled("%d x %d x %d %s, values %.4g..%.4g", info.dims.x, info.dims.y, info.dims.z, info.type.c_str(),
                         double(info.minValue), double(info.maxValue));
     ImGui::TextDisabled("built in %.2f s (distribution %.2f s)", state.sceneShown->buildSeconds,
                         state.sceneShown->distributeSeconds);
+    ImGui::PopTextWrapPos();
   }
 }
 
@@ -55,17 +97,37 @@ void drawClusterSection(GuiState& state) {
   ClusterOptions& c = state.scene.cluster;
   int& nodes = state.settings.nodes;
   if (!ImGui::IsAnyItemActive()) nodes = c.nodes;
-  ImGui::SliderInt("nodes", &nodes, 1, 256, "%d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-  if (ImGui::IsItemDeactivatedAfterEdit() && nodes != c.nodes) {
+  // The same range as --nodes; logarithmic, so 1..16 keep a third of the slider, and halve /
+  // double buttons step through the powers of two (Ctrl+click the slider to type a count).
+  const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+  const float buttons = buttonWidth("/2") + buttonWidth("x2") + 2 * spacing;
+  field("nodes");
+  ImGui::PushID("nodes");
+  ImGui::SetNextItemWidth(std::max(40.0f, ImGui::CalcItemWidth() - buttons));
+  ImGui::SliderInt("##nodes", &nodes, 1, kMaxNodes, "%d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("virtual nodes P, 1..%d (Ctrl+click to type)", kMaxNodes);
+  bool settled = ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SameLine(0, spacing);
+  if (ImGui::Button("/2")) nodes = std::max(1, c.nodes / 2), settled = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("halve the nodes");
+  ImGui::SameLine(0, spacing);
+  if (ImGui::Button("x2")) nodes = std::min(kMaxNodes, c.nodes * 2), settled = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("double the nodes");
+  if (!gNarrow) {
+    ImGui::SameLine(0, spacing);
+    ImGui::TextUnformatted("nodes");
+  }
+  ImGui::PopID();
+  if (settled && nodes != c.nodes) {
     c.nodes = nodes;
     state.requestFrame(false);
   }
   int partition = c.partition == PartitionKind::KdTree ? 0 : 1;
-  if (ImGui::Combo("partition", &partition, "k-d tree\0slabs\0")) {
+  if (ImGui::Combo(field("partition").c_str(), &partition, "k-d tree\0slabs\0")) {
     c.partition = partition == 0 ? PartitionKind::KdTree : PartitionKind::Slab;
     state.requestFrame(false);
   }
-  if (ImGui::BeginCombo("compositing", c.strategy.c_str())) {
+  if (ImGui::BeginCombo(field("compositing").c_str(), c.strategy.c_str())) {
     for (const std::string& name : strategyNames())
       if (ImGui::Selectable(name.c_str(), name == c.strategy)) {
         c.strategy = name;
@@ -79,7 +141,7 @@ void drawRenderSection(GuiState& state) {
   FrameRequest& r = state.request;
   char current[32];
   std::snprintf(current, sizeof current, "%d x %d", r.width, r.height);
-  if (ImGui::BeginCombo("image size", current)) {
+  if (ImGui::BeginCombo(field("image size").c_str(), current)) {
     for (int s : kImageSizes) {
       const std::string label = std::to_string(s) + " x " + std::to_string(s);
       if (ImGui::Selectable(label.c_str(), s == r.width && s == r.height)) {
@@ -90,25 +152,25 @@ void drawRenderSection(GuiState& state) {
     ImGui::EndCombo();
   }
   RenderSettings& s = r.settings;
-  if (ImGui::SliderFloat("step (voxels)", &s.stepVoxels, 0.1f, 2.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp)) state.requestFrame(true);
+  if (ImGui::SliderFloat(field("step (voxels)").c_str(), &s.stepVoxels, 0.1f, 2.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp)) state.requestFrame(true);
   if (ImGui::IsItemDeactivatedAfterEdit()) state.requestFrame(false);
-  if (ImGui::SliderFloat("early termination", &s.earlyTermination, 0.5f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp))
+  if (ImGui::SliderFloat(field("early termination").c_str(), &s.earlyTermination, 0.5f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp))
     state.requestFrame(true);
   if (ImGui::IsItemDeactivatedAfterEdit()) state.requestFrame(false);
   if (ImGui::Checkbox("shading", &s.shading)) state.requestFrame(false);
   ImGui::SameLine();
   if (ImGui::Checkbox("jitter", &s.jitter)) state.requestFrame(false);
   int projection = r.view.projection == Projection::Perspective ? 0 : 1;
-  if (ImGui::Combo("projection", &projection, "perspective\0orthographic\0")) {
+  if (ImGui::Combo(field("projection").c_str(), &projection, "perspective\0orthographic\0")) {
     r.view.projection = projection == 0 ? Projection::Perspective : Projection::Orthographic;
     state.requestFrame(false);
   }
   int up = int(r.view.up);
-  if (ImGui::Combo("up axis", &up, "+x\0-x\0+y\0-y\0+z\0-z\0")) {
+  if (ImGui::Combo(field("up axis").c_str(), &up, "+x\0-x\0+y\0-y\0+z\0-z\0")) {
     r.view.up = UpAxis(up);
     state.requestFrame(false);
   }
-  if (ImGui::SliderFloat("field of view", &r.view.fovDeg, 10.0f, 90.0f, "%.0f deg")) state.requestFrame(true);
+  if (ImGui::SliderFloat(field("field of view").c_str(), &r.view.fovDeg, 10.0f, 90.0f, "%.0f deg")) state.requestFrame(true);
   if (ImGui::IsItemDeactivatedAfterEdit()) state.requestFrame(false);
 }
 
@@ -119,7 +181,16 @@ void drawSettingsPanel(GuiState& state) {
     ImGui::End();
     return;
   }
-  ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
+  // Widgets leave room for the widest label beside them; when that would leave them under 55%
+  // of the panel, labels go above the widgets instead.
+  float label = 0;
+  for (const char* text : {"data", "nodes", "partition", "compositing", "image size", "step (voxels)",
+                           "early termination", "projection", "up axis", "field of view"})
+    label = std::max(label, ImGui::CalcTextSize(text).x);
+  const float avail = ImGui::GetContentRegionAvail().x;
+  const float beside = avail - label - ImGui::GetStyle().ItemInnerSpacing.x - 2;
+  gNarrow = beside < avail * 0.55f;
+  ImGui::PushItemWidth(gNarrow ? avail : std::min(avail * 0.62f, beside));
   section("Data");
   drawDataSection(state);
   section("Virtual cluster");

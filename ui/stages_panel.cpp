@@ -11,7 +11,7 @@ namespace kdswap {
 namespace {
 
 constexpr double kSecondsPerPhase = 0.8;
-constexpr float kMinCell = 20.0f, kLabelWidth = 64.0f, kGap = 3.0f;
+constexpr float kMinCell = 20.0f, kGap = 3.0f;
 const ImU32 kOutline = IM_COL32(255, 204, 26, 255);
 
 std::string phaseName(const PhaseRecord& record, int phase) {
@@ -46,15 +46,19 @@ void drawControls(GuiState& state, const PhaseRecord& record) {
     ui.nextStepAt = ImGui::GetTime() + kSecondsPerPhase;
     if (++ui.phase >= last) ui.phase = last, ui.playing = false;
   }
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(180);
   const std::string name = phaseName(record, ui.phase);
+  float sliderW = 180;
+  for (int p = 0; p <= last; ++p)
+    sliderW = std::max(sliderW, ImGui::CalcTextSize(phaseName(record, p).c_str()).x + 2 * ImGui::GetStyle().FramePadding.x + 8);
+  sameLineIfFits(labelledWidth(sliderW, "phase"));
+  ImGui::SetNextItemWidth(sliderW);
   if (ImGui::SliderInt("phase", &ui.phase, 0, last, name.c_str())) ui.playing = false;
-  ImGui::SameLine();
+  sameLineIfFits(labelledWidth(110, "zoom"));
   ImGui::SetNextItemWidth(110);
   ImGui::SliderFloat("zoom", &ui.cellScale, 0.5f, 4.0f, "%.1fx");
-  ImGui::SameLine();
-  ImGui::TextDisabled("(%zu nodes x %d phases)", record.cells.size(), record.phaseCount());
+  const std::string size = "(" + counted(long(record.cells.size()), "node") + " x " + counted(record.phaseCount(), "phase") + ")";
+  sameLineIfFits(ImGui::CalcTextSize(size.c_str()).x);
+  ImGui::TextDisabled("%s", size.c_str());
 }
 
 // The enlarged cell below the grid, with its details beside it.
@@ -93,7 +97,9 @@ void drawSelection(GuiState& state, const PhaseRecord& record, const StageAtlas&
 // Below the grid when no cell is enlarged: the final frame with the tile each node finished
 // outlined in its colour (the last row of the grid, assembled).
 void drawFinalTiles(GuiState& state, const PhaseRecord& record) {
+  ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("Final image: the tile each node finished. Hover a cell for details; click to enlarge.");
+  ImGui::PopTextWrapPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float side = std::min(avail.x, avail.y - 4.0f);
   if (side < 48 || !state.fullTexture.valid()) return;
@@ -141,8 +147,13 @@ void drawStagesPanel(GuiState& state) {
   StagesUi& ui = state.stages;
   drawControls(state, record);
 
+  // Row labels as wide as the widest phase name (at most a third of the panel, then shortened).
+  float labelWidth = 0;
+  for (int phase = 0; phase < atlas.rows; ++phase)
+    labelWidth = std::max(labelWidth, ImGui::CalcTextSize(phaseName(record, phase).c_str()).x + 8);
+  labelWidth = std::min(labelWidth, std::max(40.0f, ImGui::GetContentRegionAvail().x / 3));
   // Cells fit the width, then the zoom scales them; the child scrolls when they do not fit.
-  const float availW = ImGui::GetContentRegionAvail().x - kLabelWidth - 2 * kGap - ImGui::GetStyle().ScrollbarSize;
+  const float availW = ImGui::GetContentRegionAvail().x - labelWidth - 2 * kGap - ImGui::GetStyle().ScrollbarSize;
   const float cellW = std::max(kMinCell, (availW / float(atlas.columns) - kGap) * ui.cellScale);
   const float cellH = cellW * float(atlas.cellHeight) / float(atlas.cellWidth);
   const float gridH = 18.0f + float(atlas.rows) * (cellH + kGap) + ImGui::GetStyle().ScrollbarSize + 4;
@@ -154,7 +165,7 @@ void drawStagesPanel(GuiState& state) {
   const ImVec2 aw(float(atlas.pixels.width), float(atlas.pixels.height));
   for (int node = 0; node < atlas.columns; ++node) {
     const std::string label = std::to_string(node);
-    const float x = origin.x + kLabelWidth + float(node) * (cellW + kGap);
+    const float x = origin.x + labelWidth + float(node) * (cellW + kGap);
     draw->AddText(ImVec2(x + 0.5f * (cellW - ImGui::CalcTextSize(label.c_str()).x), origin.y), nodeColour(node),
                   label.c_str());
   }
@@ -163,11 +174,11 @@ void drawStagesPanel(GuiState& state) {
   for (int phase = 0; phase < atlas.rows; ++phase) {
     const float y = origin.y + 18.0f + float(phase) * (cellH + kGap);
     const bool revealed = phase <= ui.phase;
-    const std::string name = phaseName(record, phase);
+    const std::string name = fitText(phaseName(record, phase), labelWidth - 6);
     draw->AddText(ImVec2(origin.x, y + 0.5f * cellH - 7), revealed ? IM_COL32(220, 220, 220, 255) : IM_COL32(110, 110, 110, 255),
                   name.c_str());
     for (int node = 0; node < atlas.columns; ++node) {
-      const ImVec2 p0(origin.x + kLabelWidth + float(node) * (cellW + kGap), y), p1(p0.x + cellW, p0.y + cellH);
+      const ImVec2 p0(origin.x + labelWidth + float(node) * (cellW + kGap), y), p1(p0.x + cellW, p0.y + cellH);
       ImGui::SetCursorScreenPos(p0);
       ImGui::PushID(phase * atlas.columns + node);
       ImGui::InvisibleButton("cell", ImVec2(cellW, cellH));
@@ -196,7 +207,7 @@ void drawStagesPanel(GuiState& state) {
     }
   }
   ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + gridH - ImGui::GetStyle().ScrollbarSize - 4));
-  ImGui::Dummy(ImVec2(kLabelWidth + float(atlas.columns) * (cellW + kGap), 1));
+  ImGui::Dummy(ImVec2(labelWidth + float(atlas.columns) * (cellW + kGap), 1));
   ImGui::EndChild();
   if (selection) drawSelection(state, record, atlas);
   else drawFinalTiles(state, record);

@@ -29,7 +29,11 @@ void changed(GuiState& state, bool continuous) {
 void drawPresetRow(GuiState& state) {
   TransferFunction& tf = state.request.transfer;
   const std::vector<std::string> names = presetNames();
-  ImGui::SetNextItemWidth(150);
+  float comboW = ImGui::CalcTextSize("(edited)").x;
+  for (const std::string& name : names) comboW = std::max(comboW, ImGui::CalcTextSize(name.c_str()).x);
+  comboW = std::min(comboW + ImGui::GetFrameHeight() + 2 * ImGui::GetStyle().FramePadding.x,
+                    ImGui::GetContentRegionAvail().x * 0.45f);
+  ImGui::SetNextItemWidth(comboW);
   if (ImGui::BeginCombo("preset", tf.name().empty() ? "(edited)" : tf.name().c_str())) {
     for (const std::string& name : names)
       if (ImGui::Selectable(name.c_str(), name == tf.name())) {
@@ -42,9 +46,13 @@ void drawPresetRow(GuiState& state) {
       }
     ImGui::EndCombo();
   }
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - 110));
+  // The path field takes what the buttons leave; on a line of its own when that is too little.
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  const float buttons = buttonWidth("Save") + buttonWidth("Load") + 3 * spacing;
+  sameLineIfFits(buttons + 120);
+  ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x - buttons + spacing));
   ImGui::InputText("##path", &state.transfer.path);
+  if (ImGui::IsItemHovered() && !ImGui::IsItemActive()) ImGui::SetTooltip("%s", state.transfer.path.c_str());
   ImGui::SameLine();
   if (ImGui::Button("Save")) {
     try {
@@ -66,8 +74,8 @@ void drawPresetRow(GuiState& state) {
 
 void drawCurve(GuiState& state) {
   TransferFunction& tf = state.request.transfer;
-  const std::vector<float> empty;
-  const std::vector<float>& histogram = state.sceneShown ? state.sceneShown->histogram : empty;
+  const Histogram empty;
+  const Histogram& histogram = state.sceneShown ? state.sceneShown->histogram : empty;
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   const float width = std::max(ImGui::GetContentRegionAvail().x, 50.0f);
   ImGui::InvisibleButton("curve", ImVec2(width, kCurveHeight), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
@@ -75,11 +83,17 @@ void drawCurve(GuiState& state) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 p1(p0.x + width, p0.y + kCurveHeight);
   draw->AddRectFilled(p0, p1, IM_COL32(24, 24, 30, 255));
-  if (!histogram.empty()) {
-    const float bw = width / float(histogram.size());
-    for (std::size_t i = 0; i < histogram.size(); ++i)
-      draw->AddRectFilled(ImVec2(p0.x + float(i) * bw, p1.y - histogram[i] * kCurveHeight),
-                          ImVec2(p0.x + float(i + 1) * bw, p1.y), IM_COL32(90, 90, 110, 255));
+  if (!histogram.bins.empty()) {
+    // Integer data's bins are centred on whole values, so the outer ones reach half a bin past
+    // the ends of the axis: clip them.
+    draw->PushClipRect(p0, p1, true);
+    const float n = float(histogram.bins.size()), span = histogram.x1 - histogram.x0;
+    for (std::size_t i = 0; i < histogram.bins.size(); ++i) {
+      const float a = histogram.x0 + span * float(i) / n, b = histogram.x0 + span * float(i + 1) / n;
+      draw->AddRectFilled(ImVec2(p0.x + a * width, p1.y - histogram.bins[i] * kCurveHeight),
+                          ImVec2(p0.x + b * width, p1.y), IM_COL32(90, 90, 110, 255));
+    }
+    draw->PopClipRect();
   }
   for (float a : {0.01f, 0.1f, 0.5f}) {
     const float y = p1.y - alphaToY(a) * kCurveHeight;
@@ -90,8 +104,28 @@ void drawCurve(GuiState& state) {
     return ImVec2(p0.x + o.x * width, p1.y - alphaToY(o.alpha) * kCurveHeight);
   };
   std::vector<OpacityPoint> points = tf.opacity();
-  for (std::size_t i = 0; i + 1 < points.size(); ++i)
-    draw->AddLine(toScreen(points[i]), toScreen(points[i + 1]), IM_COL32(255, 255, 255, 230), 2.0f);
+  // The renderer interpolates opacity linearly between control points (and holds the end values
+  // beyond them); on the square-root axis that is a curve, so each segment is sampled in opacity
+  // every few pixels rather than joined by a straight screen line.
+  if (!points.empty()) {
+    std::vector<ImVec2> curve;
+    auto add = [&](const OpacityPoint& o) {
+      const ImVec2 q = toScreen(o);
+      if (curve.empty() || std::abs(q.x - curve.back().x) + std::abs(q.y - curve.back().y) > 0.01f) curve.push_back(q);
+    };
+    add({0.0f, points.front().alpha});
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+      const OpacityPoint &a = points[i], &b = points[i + 1];
+      const int steps = std::clamp(int((b.x - a.x) * width / 3.0f), 1, 512);
+      for (int k = 0; k < steps; ++k) {
+        const float t = float(k) / float(steps);
+        add({a.x + t * (b.x - a.x), a.alpha + t * (b.alpha - a.alpha)});
+      }
+    }
+    add(points.back());
+    add({1.0f, points.back().alpha});
+    draw->AddPolyline(curve.data(), int(curve.size()), IM_COL32(255, 255, 255, 230), 0, 2.0f);
+  }
 
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   int near = -1;

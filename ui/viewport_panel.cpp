@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <GLFW/glfw3.h>
 #include <glm/common.hpp>
 
 #include "ui/panels.h"
+#include "ui/printable_text.h"
 #include "core/camera/camera.h"
 
 namespace kdswap {
@@ -37,9 +39,26 @@ void drawStatusLine(GuiState& state) {
   } else if (state.rendering) {
     ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "rendering...");
   } else if (state.frame) {
+    // The frame's own wall time (the Table's), and apart from it the wait from the request to
+    // the finished frame, which also holds a scene build or an earlier frame still rendering.
     const FrameSnapshot& f = *state.frame;
-    ImGui::TextDisabled("%dx%d, %d nodes, %s: %.0f ms", f.request.width, f.request.height, f.stats.nodes,
-                        f.stats.strategy.c_str(), f.seconds * 1e3);
+    // Times first: a narrow panel cuts the scene description (the Settings panel has it) first.
+    char text[256];
+    std::snprintf(text, sizeof text, "%s%.0f ms wall (request to frame %.0f ms), %dx%d, %s, %s",
+                  f.preview ? "preview " : "", f.stats.wallSeconds * 1e3, f.seconds * 1e3, f.request.width,
+                  f.request.height, counted(f.stats.nodes, "node").c_str(), f.stats.strategy.c_str());
+    const std::string full = text, shown = fitText(full, ImGui::GetContentRegionAvail().x);
+    ImGui::TextDisabled("%s", shown.c_str());
+    if (ImGui::IsItemHovered()) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+      ImGui::TextUnformatted(full.c_str());
+      ImGui::TextDisabled("wall: the frame as the cluster timed it, host to host (Timing > Table). Request to "
+                          "frame: from asking for it to the finished frame, including any scene build and "
+                          "waiting for an earlier frame.");
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
   }
 }
 
@@ -53,7 +72,7 @@ void drawErrors(GuiState& state) {
     }
     ImGui::SameLine();
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", state.errors[i].c_str());
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", printableText(state.errors[i]).c_str());
     ImGui::PopTextWrapPos();
     ImGui::PopID();
   }
