@@ -56,7 +56,12 @@ void drawControls(GuiState& state, const PhaseRecord& record) {
   sameLineIfFits(labelledWidth(110, "zoom"));
   ImGui::SetNextItemWidth(110);
   ImGui::SliderFloat("zoom", &ui.cellScale, 0.5f, 4.0f, "%.1fx");
-  const std::string size = "(" + counted(long(record.cells.size()), "node") + " x " + counted(record.phaseCount(), "phase") + ")";
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on the chained operator+.
+  std::string size = "(";
+  size += counted(long(record.cells.size()), "node");
+  size += " x ";
+  size += counted(record.phaseCount(), "phase");
+  size += ")";
   sameLineIfFits(ImGui::CalcTextSize(size.c_str()).x);
   ImGui::TextDisabled("%s", size.c_str());
 }
