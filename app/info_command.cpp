@@ -22,7 +22,7 @@ namespace {
 struct InfoOptions {
   std::string file, dataset;
   std::string rawDims, rawType, rawEndian, rawSpacing;
-  std::uint64_t rawSkip = 0;
+  std::int64_t rawSkip = 0;  // signed, so that -1 is refused rather than wrapped
   int bins = 16;
   bool json = false;
 };
@@ -52,8 +52,8 @@ RawLayout rawLayout(const InfoOptions& o) {
     const auto d = numbers(o.rawDims, 'x', "--raw-dims", "WxHxD");
     if (d.size() != 3) throw Error("--raw-dims \"" + o.rawDims + "\": expected WxHxD");
     for (double v : d)
-      if (v < 1 || v > 2147483647.0 || v != std::floor(v))
-        throw Error("--raw-dims \"" + o.rawDims + "\": expected whole numbers from 1 to 2147483647");
+      if (v < 2 || v > 1e6 || v != std::floor(v))
+        throw Error("--raw-dims \"" + o.rawDims + "\": each size must be a whole number from 2 to 1000000");
     layout.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
   }
   if (!o.rawType.empty()) layout.type = o.rawType;
@@ -67,7 +67,8 @@ RawLayout rawLayout(const InfoOptions& o) {
     if (s.size() != 3) throw Error("--raw-spacing \"" + o.rawSpacing + "\": expected SX,SY,SZ");
     layout.spacing = glm::vec3(float(s[0]), float(s[1]), float(s[2]));
   }
-  layout.headerBytes = o.rawSkip;
+  if (o.rawSkip < 0) throw Error("--raw-skip " + std::to_string(o.rawSkip) + ": expected a number of bytes >= 0");
+  layout.headerBytes = std::uint64_t(o.rawSkip);
   return layout;
 }
 

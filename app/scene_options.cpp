@@ -241,7 +241,8 @@ Scene buildScene(const SceneOptions& o) {
       const auto d = parseNumbers(o.rawDims, 'x', "--raw-dims");
       if (d.size() != 3) throw Error("--raw-dims \"" + o.rawDims + "\": expected WxHxD");
       for (double v : d)
-        if (v < 1 || v > 1e6 || v != std::floor(v)) throw Error("--raw-dims \"" + o.rawDims + "\": sizes must be whole numbers >= 1");
+        if (v < 2 || v > 1e6 || v != std::floor(v))
+          throw Error("--raw-dims \"" + o.rawDims + "\": each size must be a whole number from 2 to 1000000");
       layout.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
     }
     if (!o.rawType.empty()) layout.type = o.rawType;

@@ -32,6 +32,15 @@ constexpr const char* kSupported =
     ".nrrd/.nhdr (NRRD), .mhd/.mha (MetaImage), .nii/.nii.gz (NIfTI-1), .vtk (legacy VTK), "
     ".raw (NAME_WxHxD_TYPE.raw or a layout on the command line)";
 
+//! How messages name a format.
+std::string formatTitle(std::string_view name) {
+  if (name == "nrrd") return "NRRD";
+  if (name == "metaimage") return "MetaImage";
+  if (name == "nifti") return "NIfTI-1";
+  if (name == "vtk") return "legacy VTK";
+  return std::string(name);
+}
+
 }  // namespace
 
 std::unique_ptr<VolumeSource> openVolumeFile(const std::string& path, const RawLayout& layout) {
@@ -39,10 +48,24 @@ std::unique_ptr<VolumeSource> openVolumeFile(const std::string& path, const RawL
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) throw Error(path + ": no such file");
   if (std::filesystem::is_directory(status)) throw Error(path + ": is a directory: expected a volume file");
-  // A layout given on the command line means "read this as raw", whatever the extension.
-  if (layout.dims || layout.type) return RawReader().open(path, layout);
-  for (const auto& reader : readers())
-    if (reader->accepts(path)) return reader->open(path, layout);
+  // A device or FIFO would be read without end or block the open.
+  if (!std::filesystem::is_regular_file(status))
+    throw Error(path + ": is not a regular file (a device, FIFO or socket): expected a volume file");
+  const Reader* reader = nullptr;
+  for (const auto& r : readers())
+    if (r->accepts(path)) {
+      reader = r.get();
+      break;
+    }
+  // A layout given on the command line means "read this as raw", whatever the extension, except for
+  // the formats whose header gives the layout: reading that header as voxels is never meant.
+  if (layout.dims || layout.type || layout.spacing || layout.headerBytes > 0) {
+    if (reader && reader->name() != "raw")
+      throw Error(path + ": a raw layout (dimensions, type, spacing or skip from the command line) applies only to raw "
+                  "files: this is a " + formatTitle(reader->name()) + " file, whose header gives its own layout");
+    if (layout.dims || layout.type) return RawReader().open(path, layout);
+  }
+  if (reader) return reader->open(path, layout);
   throw Error(path + ": unknown volume format: expected " + kSupported);
 }
 

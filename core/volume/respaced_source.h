@@ -13,7 +13,8 @@ namespace kdswap {
 
 class RespacedSource : public VolumeSource {
  public:
-  //! Throws Error unless every component of `spacing` is finite and > 0.
+  //! Throws Error unless `spacing` passes checkSpacing for the volume and its values still pass
+  //! checkValueRange (whose gradient bound depends on the spacing).
   RespacedSource(std::unique_ptr<VolumeSource> inner, const glm::vec3& spacing);
 
   const VolumeInfo& info() const override { return info_; }
@@ -24,7 +25,7 @@ class RespacedSource : public VolumeSource {
   VolumeInfo info_;
 };
 
-//! "SX,SY,SZ" as a spacing (each finite and > 0); Error naming `option` otherwise.
+//! "SX,SY,SZ" as a spacing, each from kMinSpacing to kMaxSpacing; Error naming `option` otherwise.
 glm::vec3 parseSpacing(const std::string& text, const std::string& option);
 
 }  // namespace kdswap

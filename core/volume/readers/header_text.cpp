@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -82,6 +83,28 @@ std::optional<std::vector<std::int64_t>> parseSizes(std::string_view s, std::siz
     sizes.push_back(*v);
   }
   return sizes;
+}
+
+std::string printable(std::string_view s, std::size_t maxChars) {
+  std::string out;
+  for (char c : s.substr(0, maxChars)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 32 && byte < 127) {
+      out += c;
+    } else {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02X", byte);
+      out += hex;
+    }
+  }
+  return s.size() > maxChars ? out + "..." : out;
+}
+
+std::string quote(std::string_view s, std::size_t maxChars) {
+  std::string out = "\"";  // appended, not "\"" + ...: GCC 12 warns of a false -Wrestrict there
+  out += printable(s, maxChars);
+  out += '"';
+  return out;
 }
 
 std::string siblingPath(const std::string& headerPath, const std::string& name) {

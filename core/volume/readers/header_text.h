@@ -29,6 +29,12 @@ std::optional<double> parseNumber(std::string_view s);
 //! Parses exactly `count` whole numbers separated by spaces. nullopt otherwise.
 std::optional<std::vector<std::int64_t>> parseSizes(std::string_view s, std::size_t count);
 
+//! `s` fit for a one-line message: at most `maxChars` of it (then "..."), and every byte outside
+//! printable ASCII (control bytes, NUL, binary garbage) written as \xNN.
+std::string printable(std::string_view s, std::size_t maxChars = 40);
+//! printable(s) in double quotes.
+std::string quote(std::string_view s, std::size_t maxChars = 40);
+
 //! `name` resolved against the folder of `headerPath` unless it is absolute.
 std::string siblingPath(const std::string& headerPath, const std::string& name);
 

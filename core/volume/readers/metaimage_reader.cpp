@@ -28,18 +28,21 @@ bool parseBool(const std::string& value, const std::string& where, const std::st
   const std::string v = lowercase(value);
   if (v == "true" || v == "1") return true;
   if (v == "false" || v == "0") return false;
-  throw Error(where + ": " + key + " = " + value + ": expected True or False");
+  throw Error(where + ": " + key + " = " + printable(value) + ": expected True or False");
 }
 
-glm::vec3 parseSpacing(const std::string& value, const std::string& where, const std::string& key) {
+//! A negative spacing is read as its size, as in every format (kdswap ignores orientation; MetaIO
+//! keeps direction in TransformMatrix). NaN, Inf, 0 and spacings outside checkSpacing's bounds are refused.
+glm::vec3 parseSpacing(const std::string& value, const glm::ivec3& dims, const std::string& where, const std::string& key) {
   const auto words = splitWords(value);
-  glm::vec3 spacing(1.0f);
+  glm::dvec3 spacing(1.0);
   for (int a = 0; a < 3; ++a) {
     const auto v = a < int(words.size()) ? parseNumber(words[a]) : std::nullopt;
-    if (words.size() != 3 || !v) throw Error(where + ": " + key + " = " + value + ": expected 3 numbers");
-    spacing[a] = float(std::abs(*v));
+    if (words.size() != 3 || !v) throw Error(where + ": " + key + " = " + printable(value) + ": expected 3 numbers");
+    spacing[a] = std::abs(*v);
   }
-  return spacing;
+  checkSpacing(dims, spacing, where, key + " = " + printable(value));
+  return glm::vec3(spacing);
 }
 
 }  // namespace
@@ -65,7 +68,7 @@ std::unique_ptr<VolumeSource> MetaImageReader::open(const std::string& path, con
     if (trimmed.empty() || trimmed.front() == '#') continue;
     const std::size_t eq = trimmed.find('=');
     if (eq == std::string_view::npos)
-      throw Error(path + ": header line \"" + std::string(trimmed.substr(0, 40)) + "\": expected \"Key = Value\"");
+      throw Error(path + ": header line " + quote(trimmed) + ": expected \"Key = Value\"");
     const std::string key = lowercase(trim(trimmed.substr(0, eq)));
     fields[key] = std::string(trim(trimmed.substr(eq + 1)));
     haveDataFile = key == "elementdatafile";
@@ -77,14 +80,14 @@ std::unique_ptr<VolumeSource> MetaImageReader::open(const std::string& path, con
   };
 
   if (const std::string* object = field("objecttype"); object && lowercase(*object) != "image")
-    throw Error(path + ": ObjectType = " + *object + ": expected Image");
+    throw Error(path + ": ObjectType = " + printable(*object) + ": expected Image");
   const std::string* ndims = field("ndims");
   if (!ndims) throw Error(path + ": no NDims line: expected NDims = 3");
-  if (*ndims != "3") throw Error(path + ": NDims = " + *ndims + ": only 3D volumes are supported (NDims = 3)");
+  if (*ndims != "3") throw Error(path + ": NDims = " + printable(*ndims) + ": only 3D volumes are supported (NDims = 3)");
   const std::string* dimSize = field("dimsize");
   if (!dimSize) throw Error(path + ": no DimSize line: expected DimSize = W H D");
   const auto sizes = parseSizes(*dimSize, 3);
-  if (!sizes) throw Error(path + ": DimSize = " + *dimSize + ": expected 3 whole numbers");
+  if (!sizes) throw Error(path + ": DimSize = " + printable(*dimSize) + ": expected 3 whole numbers");
   VolumeInfo info;
   info.name = path;
   info.dims = dimsFromSizes(*sizes, path, "DimSize");
@@ -94,13 +97,13 @@ std::unique_ptr<VolumeSource> MetaImageReader::open(const std::string& path, con
   if (!elementType) throw Error(path + ": no ElementType line: expected e.g. ElementType = MET_UCHAR");
   const auto scalar = metaType(lowercase(*elementType));
   if (!scalar)
-    throw Error(path + ": ElementType = " + *elementType +
+    throw Error(path + ": ElementType = " + printable(*elementType) +
                 ": unsupported (expected MET_CHAR MET_UCHAR MET_SHORT MET_USHORT MET_INT MET_UINT MET_FLOAT MET_DOUBLE)");
   data.type = *scalar;
   if (const std::string* channels = field("elementnumberofchannels"); channels && *channels != "1")
-    throw Error(path + ": ElementNumberOfChannels = " + *channels + ": only scalar volumes are supported (1)");
+    throw Error(path + ": ElementNumberOfChannels = " + printable(*channels) + ": only scalar volumes are supported (1)");
   if (const std::string* binary = field("binarydata"); binary && !parseBool(*binary, path, "BinaryData"))
-    throw Error(path + ": BinaryData = " + *binary + ": only binary data is supported (True)");
+    throw Error(path + ": BinaryData = " + printable(*binary) + ": only binary data is supported (True)");
   if (const std::string* msb = field("binarydatabyteordermsb"))
     data.bigEndian = parseBool(*msb, path, "BinaryDataByteOrderMSB");
   else if (const std::string* msb2 = field("elementbyteordermsb"))
@@ -108,9 +111,9 @@ std::unique_ptr<VolumeSource> MetaImageReader::open(const std::string& path, con
   if (const std::string* compressed = field("compresseddata"))
     data.compressed = parseBool(*compressed, path, "CompressedData");
   if (const std::string* spacing = field("elementspacing"))
-    info.spacing = parseSpacing(*spacing, path, "ElementSpacing");
+    info.spacing = parseSpacing(*spacing, info.dims, path, "ElementSpacing");
   else if (const std::string* size = field("elementsize"))
-    info.spacing = parseSpacing(*size, path, "ElementSize");
+    info.spacing = parseSpacing(*size, info.dims, path, "ElementSize");
 
   const std::string& dataFile = *field("elementdatafile");
   const auto words = splitWords(dataFile);
@@ -119,15 +122,13 @@ std::unique_ptr<VolumeSource> MetaImageReader::open(const std::string& path, con
     data.offset = pos;
   } else {
     if (words.size() != 1 || words[0] == "LIST")
-      throw Error(path + ": ElementDataFile = " + dataFile + ": only LOCAL or a single file is supported");
+      throw Error(path + ": ElementDataFile = " + printable(dataFile) + ": only LOCAL or a single file is supported");
     data.path = siblingPath(path, dataFile);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(data.path, ec))
-      throw Error(path + ": ElementDataFile " + dataFile + " (" + data.path + "): no such file");
+    checkDataFile(data.path, path, "ElementDataFile " + printable(dataFile));
   }
   if (const std::string* headerSize = field("headersize")) {
     const auto n = parseInteger(*headerSize);
-    if (!n || *n < -1) throw Error(path + ": HeaderSize = " + *headerSize + ": expected a whole number >= -1");
+    if (!n || *n < -1) throw Error(path + ": HeaderSize = " + printable(*headerSize) + ": expected a whole number >= -1");
     if (*n == -1) {  // the data are the last bytes of the file
       if (data.compressed) throw Error(path + ": HeaderSize = -1: not allowed with CompressedData");
       data.offset = trailingDataOffset(info, data);

@@ -4,9 +4,12 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include <glm/common.hpp>
 
 #include "core/util/error.h"
 #include "core/volume/readers/header_text.h"
@@ -112,7 +115,16 @@ std::unique_ptr<VolumeSource> NiftiReader::open(const std::string& path, const R
   VolumeInfo info;
   info.name = path;
   info.dims = dimsFromSizes({dim[1], dim[2], dim[3]}, path, "dim[1..3]");
-  for (int a = 0; a < 3; ++a) info.spacing[a] = std::abs(h.get<float>(kPixdimAt + 4 * (a + 1)));
+  // pixdim[1..3] are the voxel sizes, positive by the NIfTI-1 standard; orientation lives in qfac
+  // (pixdim[0]) and the qform/sform. A negative size is read as its magnitude, as nibabel's header
+  // check repairs it and as every other format here does (kdswap ignores orientation). NaN, Inf,
+  // 0 and sizes outside checkSpacing's bounds are refused.
+  glm::dvec3 pixdim;
+  for (int a = 0; a < 3; ++a) pixdim[a] = double(h.get<float>(kPixdimAt + 4 * (a + 1)));
+  char text[96];
+  std::snprintf(text, sizeof text, "pixdim[1..3] = %g %g %g", pixdim.x, pixdim.y, pixdim.z);
+  checkSpacing(info.dims, glm::abs(pixdim), path, text);
+  info.spacing = glm::vec3(glm::abs(pixdim));
 
   StoredData data;
   const int datatype = h.get<std::int16_t>(kDatatypeAt);

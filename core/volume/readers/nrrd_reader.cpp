@@ -37,16 +37,10 @@ std::optional<ScalarType> nrrdType(const std::string& t) {
   return it == types.end() ? std::nullopt : std::optional(it->second);
 }
 
-//! A header line quoted in a message: at most 40 characters, no control bytes.
-std::string quote(std::string_view s) {
-  std::string out;
-  for (char c : s.substr(0, 40)) out += (static_cast<unsigned char>(c) < 32 || c == 127) ? '?' : c;
-  return "\"" + out + (s.size() > 40 ? "...\"" : "\"");
-}
-
-//! "(1,0,0) (0,1,0) (0,0,2)" -> lengths of the three vectors.
-glm::vec3 spacingFromDirections(std::string_view value, const std::string& where) {
-  glm::vec3 spacing(1.0f);
+//! "(1,0,0) (0,1,0) (0,0,2)" -> lengths of the three vectors (a reversed axis still has its length:
+//! kdswap ignores orientation). Checked by checkSpacing.
+glm::vec3 spacingFromDirections(std::string_view value, const glm::ivec3& dims, const std::string& where) {
+  glm::dvec3 spacing(1.0);
   int axis = 0;
   std::size_t pos = 0;
   while (axis < 3) {
@@ -66,24 +60,29 @@ glm::vec3 spacingFromDirections(std::string_view value, const std::string& where
       inside = comma == std::string_view::npos ? std::string_view() : inside.substr(comma + 1);
     }
     if (n != 3) throw Error(where + ": space directions " + quote(value) + ": expected 3 components per vector");
-    spacing[axis++] = float(glm::length(v));
+    spacing[axis++] = glm::length(v);
     pos = close + 1;
   }
   if (axis != 3) throw Error(where + ": space directions " + quote(value) + ": expected 3 vectors (x,y,z)");
-  return spacing;
+  checkSpacing(dims, spacing, where, "space directions " + quote(value));
+  return glm::vec3(spacing);
 }
 
-glm::vec3 spacingFromSpacings(std::string_view value, const std::string& where) {
+//! "spacings: 0.5 -0.5 nan": NaN is the format's "unknown" (teem's own check accepts it and refuses
+//! only Inf and 0), read as 1 like a missing field; a negative spacing, which NRRD allows for a
+//! reversed axis, is read as its size (kdswap ignores orientation, as for every format). Inf, 0 and
+//! spacings outside checkSpacing's bounds are refused.
+glm::vec3 spacingFromSpacings(std::string_view value, const glm::ivec3& dims, const std::string& where) {
   const auto words = splitWords(value);
   if (words.size() != 3) throw Error(where + ": spacings " + quote(value) + ": expected 3 numbers");
-  glm::vec3 spacing(1.0f);
+  glm::dvec3 spacing(1.0);
   for (int a = 0; a < 3; ++a) {
-    if (lowercase(words[a]) == "nan") continue;  // NRRD's "unknown"
     const auto v = parseNumber(words[a]);
     if (!v) throw Error(where + ": spacings " + quote(value) + ": expected 3 numbers");
-    spacing[a] = float(std::abs(*v));
+    if (!std::isnan(*v)) spacing[a] = std::abs(*v);
   }
-  return spacing;
+  checkSpacing(dims, spacing, where, "spacings " + quote(value));
+  return glm::vec3(spacing);
 }
 
 //! Byte offset just after `lines` newlines from `start` in `path`.
@@ -119,9 +118,13 @@ NrrdHeader readHeader(const std::string& path) {
   const bool wholeFile = text.size() < kMaxHeaderBytes;
   std::size_t pos = 0;
   std::string_view line;
-  if (!nextLine(text, pos, line) || line.substr(0, 7) != "NRRD000")
+  const bool magicLine = nextLine(text, pos, line);
+  if (!magicLine || line.substr(0, 4) != "NRRD")
     throw Error(path + ": not a NRRD file: first line " + quote(text.substr(0, text.find('\n'))) +
                 ": expected NRRD0001 .. NRRD0005");
+  // Format versions 1 to 5 are what this reader (and teem today) knows; a later one may mean fields it cannot read.
+  if (line.size() != 8 || line.substr(0, 7) != "NRRD000" || line[7] < '1' || line[7] > '5')
+    throw Error(path + ": NRRD magic " + quote(line) + ": unsupported format version (expected NRRD0001 .. NRRD0005)");
   NrrdHeader header;
   for (;;) {
     if (!nextLine(text, pos, line)) {
@@ -154,9 +157,7 @@ void locateData(const NrrdHeader& header, const std::string& path, const VolumeI
     if (words.size() != 1 || words[0] == "LIST")
       throw Error(path + ": data file " + quote(*dataFile) + ": only a single data file is supported");
     data.path = siblingPath(path, *dataFile);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(data.path, ec))
-      throw Error(path + ": data file " + quote(*dataFile) + " (" + data.path + "): no such file");
+    checkDataFile(data.path, path, "data file " + quote(*dataFile));
   } else {
     if (!header.blankLine) throw Error(path + ": no \"data file\" field and no blank line before attached data");
     data.path = path;
@@ -227,9 +228,9 @@ std::unique_ptr<VolumeSource> NrrdReader::open(const std::string& path, const Ra
   }
 
   if (const std::string* dirs = header.find("space directions"))
-    info.spacing = spacingFromDirections(*dirs, path);
+    info.spacing = spacingFromDirections(*dirs, info.dims, path);
   else if (const std::string* spacings = header.find("spacings"))
-    info.spacing = spacingFromSpacings(*spacings, path);
+    info.spacing = spacingFromSpacings(*spacings, info.dims, path);
 
   locateData(header, path, info, data);
   return openStoredData(std::move(info), data);

@@ -47,7 +47,10 @@ std::unique_ptr<VolumeSource> RawReader::open(const std::string& path, const Raw
   info.name = path;
   info.dims = layout.dims ? dimsFromSizes({layout.dims->x, layout.dims->y, layout.dims->z}, path, "dimensions")
                           : dimsFromSizes(named.sizes, path, "dimensions in the name");
-  if (layout.spacing) info.spacing = *layout.spacing;
+  if (layout.spacing) {
+    checkSpacing(info.dims, glm::dvec3(*layout.spacing), path, "spacing from the command line");
+    info.spacing = *layout.spacing;
+  }
   const std::string typeName = layout.type ? *layout.type : named.type;
   const auto type = parseScalarType(typeName);
   if (!type) throw Error(path + ": type \"" + typeName + "\": unsupported (expected one of " + scalarTypeList() + ")");

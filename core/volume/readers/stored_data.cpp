@@ -14,10 +14,29 @@
 namespace kdswap {
 namespace {
 
-void warnNonFinite(const VolumeInfo& info) {
+//! Refuses values the renderer cannot map (checkValueRange); warns, one line each, of NaN/Inf voxels
+//! and of a constant volume, which is valid data (info, export) but renders as a single value.
+void checkValues(const VolumeInfo& info) {
+  checkValueRange(info, info.name);
   if (info.nonFinite > 0)
     std::fprintf(stderr, "kdswap: warning: %s: %llu NaN/Inf voxels, excluded from the range and read as %g\n",
                  info.name.c_str(), static_cast<unsigned long long>(info.nonFinite), double(info.minValue));
+  // Types a float cannot hold exactly may differ only beyond float precision: say so.
+  const bool inexact = info.type == "float64" || info.type == "int32" || info.type == "uint32";
+  if (info.minValue == info.maxValue)
+    std::fprintf(stderr, "kdswap: warning: %s: every %svoxel has the value %g%s: a constant volume has no value "
+                 "range, so every voxel maps to the start of the transfer function\n",
+                 info.name.c_str(), info.nonFinite > 0 ? "finite " : "", double(info.minValue),
+                 inexact ? " at float precision" : "");
+}
+
+std::string fileProblem(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) return "no such file";
+  if (std::filesystem::is_directory(status)) return "is a directory, not a file of voxels";
+  if (!std::filesystem::is_regular_file(status)) return "is not a regular file (a device, FIFO or socket)";
+  return "";
 }
 
 std::unique_ptr<VolumeSource> decodeCompressed(VolumeInfo info, const StoredData& data) {
@@ -59,6 +78,11 @@ std::uint64_t trailingDataOffset(const VolumeInfo& info, const StoredData& data)
   return size - need;
 }
 
+void checkDataFile(const std::string& dataPath, const std::string& where, const std::string& field) {
+  const std::string problem = fileProblem(dataPath);
+  if (!problem.empty()) throw Error(where + ": " + field + " (" + dataPath + "): " + problem);
+}
+
 std::string dataLabel(const StoredData& data, const VolumeInfo& info) {
   return data.path == info.name ? data.path : data.path + " (data file of " + info.name + ")";
 }
@@ -90,13 +114,13 @@ std::unique_ptr<VolumeSource> openStoredData(VolumeInfo info, const StoredData& 
     source = decodeCompressed(std::move(info), data);
   else
     source = std::make_unique<RawFileSource>(std::move(info), data);
-  warnNonFinite(source->info());
+  checkValues(source->info());
   return source;
 }
 
 std::unique_ptr<VolumeSource> openDecoded(VolumeInfo info, std::vector<float> voxels) {
   auto source = std::make_unique<MemoryVolume>(std::move(info), std::move(voxels));
-  warnNonFinite(source->info());
+  checkValues(source->info());
   return source;
 }
 

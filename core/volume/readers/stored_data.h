@@ -26,17 +26,23 @@ struct StoredData {
 };
 
 //! Validates `info` (dims, spacing, memory) before any allocation, sets info.type from
-//! `data.type`, and opens the voxels. Prints one warning line on stderr when NaN/Inf were found.
+//! `data.type`, opens the voxels and checks their range (checkValueRange: e.g. all NaN). Prints one
+//! warning line on stderr when NaN/Inf were found and one when every voxel has the same value.
 //! Throws kdswap::Error naming the file: truncated data, size mismatch, corrupt compression.
 std::unique_ptr<VolumeSource> openStoredData(VolumeInfo info, const StoredData& data);
 
 //! Wraps voxels a reader decoded itself (ASCII data) like a compressed file's: MemoryVolume
-//! range and NaN/Inf replacement, plus the stderr warning. `info` must already be validated.
+//! range and NaN/Inf replacement, plus the range check and warnings. `info` must already be validated.
 std::unique_ptr<VolumeSource> openDecoded(VolumeInfo info, std::vector<float> voxels);
 
 //! Offset at which the voxels are the last bytes of data.path (NRRD "byte skip: -1", MetaImage
 //! "HeaderSize = -1"). Validates `info` first; throws kdswap::Error if the file is too short.
 std::uint64_t trailingDataOffset(const VolumeInfo& info, const StoredData& data);
+
+//! Throws kdswap::Error "WHERE: FIELD (DATAPATH): PROBLEM" unless `dataPath`, the data file a
+//! header names, is a regular file: missing, a directory, or a device or FIFO (read forever or
+//! blocking) are refused before it is opened.
+void checkDataFile(const std::string& dataPath, const std::string& where, const std::string& field);
 
 //! How messages name the data: the file itself, or "x.raw (data file of x.nhdr)".
 std::string dataLabel(const StoredData& data, const VolumeInfo& info);

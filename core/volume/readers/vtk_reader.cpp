@@ -36,12 +36,12 @@ std::optional<ScalarType> vtkType(const std::string& t) {
   return it == types.end() ? std::nullopt : std::optional(it->second);
 }
 
-glm::vec3 parseVec3(const std::vector<std::string_view>& words, const std::string& where) {
-  glm::vec3 v(0.0f);
+glm::dvec3 parseVec3(const std::vector<std::string_view>& words, const std::string& where) {
+  glm::dvec3 v(0.0);
   for (int a = 0; a < 3; ++a) {
     const auto n = words.size() == 4 ? parseNumber(words[a + 1]) : std::nullopt;
-    if (!n) throw Error(where + ": " + std::string(words[0]) + ": expected 3 numbers");
-    v[a] = float(*n);
+    if (!n) throw Error(where + ": " + printable(words[0]) + ": expected 3 numbers");
+    v[a] = *n;
   }
   return v;
 }
@@ -72,8 +72,8 @@ std::vector<float> parseAsciiValues(const std::string& path, std::uint64_t offse
       }
       const auto v = parseNumber(std::string_view(text).substr(i, j - i));
       if (!v)
-        throw Error(path + ": ASCII value " + std::to_string(values.size() + 1) + " \"" + text.substr(i, std::min<std::size_t>(j - i, 20)) +
-                    "\": expected a number");
+        throw Error(path + ": ASCII value " + std::to_string(values.size() + 1) + " " +
+                    quote(std::string_view(text).substr(i, j - i), 20) + ": expected a number");
       values.push_back(float(*v));
       i = j;
     }
@@ -103,13 +103,15 @@ std::unique_ptr<VolumeSource> VtkReader::open(const std::string& path, const Raw
   } while (trim(format).empty());
   const std::string mode = lowercase(trim(format));
   if (mode != "ascii" && mode != "binary")
-    throw Error(path + ": line 3 \"" + std::string(trim(format).substr(0, 20)) + "\": expected ASCII or BINARY");
+    throw Error(path + ": line 3 " + quote(trim(format), 20) + ": expected ASCII or BINARY");
 
   VolumeInfo info;
   info.name = path;
   std::optional<glm::ivec3> dims;
   std::optional<std::int64_t> pointCount;
   std::optional<ScalarType> type;
+  std::optional<glm::dvec3> spacing;
+  std::string spacingField;  // as messages show it: the keyword and its numbers
   bool dataset = false;
   for (;;) {
     const std::size_t lineStart = pos;
@@ -123,40 +125,47 @@ std::unique_ptr<VolumeSource> VtkReader::open(const std::string& path, const Raw
     }
     if (key == "dataset") {
       if (words.size() != 2 || lowercase(words[1]) != "structured_points")
-        throw Error(path + ": " + std::string(line.substr(0, 40)) + ": only DATASET STRUCTURED_POINTS is supported");
+        throw Error(path + ": " + printable(line) + ": only DATASET STRUCTURED_POINTS is supported");
       dataset = true;
     } else if (key == "dimensions") {
       std::vector<std::int64_t> sizes;
       for (std::size_t i = 1; i < words.size(); ++i) {
         const auto v = parseInteger(words[i]);
-        if (!v) throw Error(path + ": " + std::string(line) + ": expected 3 whole numbers");
+        if (!v) throw Error(path + ": " + printable(line) + ": expected 3 whole numbers");
         sizes.push_back(*v);
       }
       dims = dimsFromSizes(sizes, path, "DIMENSIONS");
     } else if (key == "spacing" || key == "aspect_ratio") {
-      info.spacing = glm::abs(parseVec3(words, path));
+      // Checked once DIMENSIONS are known; a negative spacing (VTK's reversed axis) is read as its
+      // size, as in every format (kdswap ignores orientation).
+      spacing = glm::abs(parseVec3(words, path));
+      spacingField = printable(line);
     } else if (key == "origin") {
       parseVec3(words, path);
     } else if (key == "point_data") {
       pointCount = words.size() == 2 ? parseInteger(words[1]) : std::nullopt;
-      if (!pointCount) throw Error(path + ": " + std::string(line) + ": expected POINT_DATA n");
+      if (!pointCount) throw Error(path + ": " + printable(line) + ": expected POINT_DATA n");
     } else if (key == "scalars") {
       if (!dataset || !dims || !pointCount)
         throw Error(path + ": SCALARS before DATASET STRUCTURED_POINTS, DIMENSIONS and POINT_DATA");
-      if (words.size() < 3 || words.size() > 4) throw Error(path + ": " + std::string(line) + ": expected SCALARS name type [1]");
+      if (words.size() < 3 || words.size() > 4) throw Error(path + ": " + printable(line) + ": expected SCALARS name type [1]");
       type = vtkType(lowercase(words[2]));
       if (!type)
-        throw Error(path + ": SCALARS type \"" + std::string(words[2]) + "\": unsupported (expected unsigned_char char "
+        throw Error(path + ": SCALARS type " + quote(words[2]) + ": unsupported (expected unsigned_char char "
                     "unsigned_short short unsigned_int int float double)");
       if (words.size() == 4 && words[3] != "1")
-        throw Error(path + ": SCALARS with " + std::string(words[3]) + " components: only 1 component is supported");
+        throw Error(path + ": SCALARS with " + printable(words[3]) + " components: only 1 component is supported");
     } else {
-      throw Error(path + ": keyword \"" + std::string(words[0].substr(0, 30)) + "\": unsupported (expected DATASET "
+      throw Error(path + ": keyword " + quote(words[0], 30) + ": unsupported (expected DATASET "
                   "STRUCTURED_POINTS, DIMENSIONS, SPACING, ORIGIN, POINT_DATA, SCALARS)");
     }
   }
 
   info.dims = *dims;
+  if (spacing) {
+    checkSpacing(info.dims, *spacing, path, spacingField);
+    info.spacing = glm::vec3(*spacing);
+  }
   validateVolumeInfo(info, path);
   if (*pointCount != info.voxelCount())
     throw Error(path + ": header and data size disagree: POINT_DATA " + std::to_string(*pointCount) + ", DIMENSIONS " +
