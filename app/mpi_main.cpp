@@ -36,7 +36,7 @@ struct MpiRenderOptions {
 
 constexpr float kVerifyTolerance = 1e-5f;
 
-void checkOutputFolder(const std::string& path) {
+void checkParentFolderExists(const std::string& path) {
   const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
@@ -90,8 +90,8 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   try {
     if (rank == 0) {
       if (!isSupportedImagePath(o.out)) throw Error("--out " + o.out + ": unsupported image extension");
-      checkOutputFolder(o.out);
-      if (!o.stats.empty()) checkOutputFolder(o.stats);
+      checkParentFolderExists(o.out);
+      if (!o.stats.empty()) checkParentFolderExists(o.stats);
     }
     scene = buildScene(o.scene);  // opens the volume on this rank: headers only for plain files
     prepared = true;
