@@ -1,10 +1,13 @@
 // kdswap-mpi: `mpirun -np R kdswap-mpi render ...` runs the node program on R MPI ranks, K virtual
 // nodes each (P = R x K). Every rank parses the same command line into the same FrameRequest (no
 // broadcast needed); rank 0 is also the host: it writes the image and the stats.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 // The C API only: Open MPI's deprecated C++ bindings would need libmpi_cxx.
@@ -42,6 +45,56 @@ void checkParentFolderExists(const std::string& path) {
   if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
 }
 
+//! Collective: every rank's state (0: ready; more stops the run: 1 help shown, 2 an error). Returns
+//! the highest, and in `speaker` the lowest rank in that state, which alone prints why. A rank that
+//! stopped alone would leave the others waiting in MPI for ever.
+int worstState(int mine, int ranks, int& speaker) {
+  std::vector<int> all(std::size_t(ranks), 0);
+  MPI_Allgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  const auto worst = std::max_element(all.begin(), all.end());  // the first of the highest
+  speaker = int(worst - all.begin());
+  return *worst;
+}
+
+//! Prints "kdswap-mpi: [rank R: ]PROBLEM": rank 0 speaks for all when every rank has the same
+//! command line, so it does not name itself.
+void printProblem(int rank, const std::string& problem) {
+  std::fprintf(stderr, "kdswap-mpi: %s%s\n", rank == 0 ? "" : ("rank " + std::to_string(rank) + ": ").c_str(),
+               problem.c_str());
+}
+
+//! Collective: true when no rank has a problem; otherwise the lowest rank with one prints it.
+bool allRanksReady(const std::string& problem, int rank, int ranks) {
+  int speaker = 0;
+  if (worstState(problem.empty() ? 0 : 2, ranks, speaker) == 0) return true;
+  if (rank == speaker) printProblem(rank, problem);
+  return false;
+}
+
+//! Collective: ranks that disagree on K would number the nodes differently and wait for messages
+//! that never come. Returns the problem on every rank alike (empty when they agree).
+std::string nodesPerRankDisagreement(int nodesPerRank, int ranks) {
+  std::vector<int> all(std::size_t(ranks), 0);
+  MPI_Allgather(&nodesPerRank, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 1; r < ranks; ++r)
+    if (all[std::size_t(r)] != all[0])
+      return "--nodes-per-rank: " + std::to_string(all[std::size_t(r)]) + " on rank " + std::to_string(r) + ", " +
+             std::to_string(all[0]) + " on rank 0: every rank must be started with the same value";
+  return "";
+}
+
+//! This rank's options, before the network starts (throws kdswap::Error).
+void checkRankOptions(MpiRenderOptions& o, int ranks, bool nodesGiven) {
+  if (o.nodesPerRank < 1 || std::int64_t(o.nodesPerRank) * ranks > kMaxNodes)
+    throw Error("--nodes-per-rank " + std::to_string(o.nodesPerRank) + ": ranks (" + std::to_string(ranks) +
+                ") x nodes per rank must be from 1 to " + std::to_string(kMaxNodes));
+  if (nodesGiven && o.scene.nodes != ranks * o.nodesPerRank)
+    throw Error("--nodes " + std::to_string(o.scene.nodes) + ": must equal MPI ranks (" + std::to_string(ranks) +
+                ") x --nodes-per-rank (" + std::to_string(o.nodesPerRank) + "); or leave it out");
+  if (!(o.stallSeconds > 0)) throw Error("--stall-seconds must be > 0");
+  o.scene.nodes = ranks * o.nodesPerRank;
+}
+
 //! Rank 0, after a successful frame: image, table, optional verification and stats. Returns the
 //! exit code (1: verification failed).
 int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOutcome& outcome) {
@@ -75,14 +128,13 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
 //! Every rank. Returns the exit code rank 0 decided (all ranks return the same).
 int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   const int ranks = session.size(), rank = session.rank();
-  if (o.nodesPerRank < 1 || std::int64_t(o.nodesPerRank) * ranks > kMaxNodes)
-    throw Error("--nodes-per-rank " + std::to_string(o.nodesPerRank) + ": ranks (" + std::to_string(ranks) +
-                ") x nodes per rank must be from 1 to " + std::to_string(kMaxNodes));
-  if (nodesGiven && o.scene.nodes != ranks * o.nodesPerRank)
-    throw Error("--nodes " + std::to_string(o.scene.nodes) + ": must equal MPI ranks (" + std::to_string(ranks) +
-                ") x --nodes-per-rank (" + std::to_string(o.nodesPerRank) + "); or leave it out");
-  if (!(o.stallSeconds > 0)) throw Error("--stall-seconds must be > 0");
-  o.scene.nodes = ranks * o.nodesPerRank;
+  std::string problem = nodesPerRankDisagreement(o.nodesPerRank, ranks);
+  if (problem.empty()) try {
+      checkRankOptions(o, ranks, nodesGiven);
+    } catch (const std::exception& e) {
+      problem = e.what();
+    }
+  if (!allRanksReady(problem, rank, ranks)) return 2;
 
   MpiNetwork network(o.nodesPerRank, o.stallSeconds);
   Scene scene;
@@ -146,27 +198,43 @@ int main(int argc, char** argv) {
   cmd->add_option("--stats", o.stats, "Write the frame's figures as JSON (kdswap render keys + per_rank)");
   cmd->add_flag("--verify", o.verify, "Also render the single-node reference on rank 0; exit 1 if they differ");
   cmd->add_flag("--quiet,-q", o.quiet, "Print nothing but errors and the verify line");
+  // Every rank parses its own command line (an MPMD launch gives each its own); they agree on
+  // stopping before any traffic.
+  std::optional<CLI::CallForHelp> help;
+  std::optional<CLI::CallForAllHelp> allHelp;
+  std::string problem;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return root ? app.exit(e) : 0;
+    help = e;
   } catch (const CLI::CallForAllHelp& e) {
-    return root ? app.exit(e) : 0;
+    allHelp = e;
   } catch (const CLI::ParseError& e) {
-    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+    problem = e.what();
+  }
+  if (problem.empty() && !help && !allHelp)
+    for (const char* name : virtualOnly)
+      if (cmd->get_option(name)->count() > 0) {
+        problem = std::string(name) + " is not supported over MPI ranks (kdswap render has it)" +
+                  (std::string(name) == "--stall-timeout" ? "; use --stall-seconds" : "");
+        break;
+      }
+  const int rank = session->rank();
+  int speaker = 0;
+  const int state = kdswap::worstState(!problem.empty() ? 2 : (help || allHelp) ? 1 : 0, session->size(), speaker);
+  if (state == 2) {
+    if (rank == speaker) kdswap::printProblem(rank, problem);
     return 2;
   }
-  for (const char* name : virtualOnly)
-    if (cmd->get_option(name)->count() > 0) {
-      if (root)
-        std::fprintf(stderr, "kdswap-mpi: %s is not supported over MPI ranks (kdswap render has it)%s\n", name,
-                     std::string(name) == "--stall-timeout" ? "; use --stall-seconds" : "");
-      return 2;
-    }
+  if (state == 1) {
+    if (rank == speaker) help ? app.exit(*help) : app.exit(*allHelp);
+    return 0;
+  }
   try {
     return kdswap::run(o, *session, cmd->get_option("--nodes")->count() > 0);
   } catch (const std::exception& e) {
-    // Option errors found before any traffic are the same on every rank: rank 0 reports them.
+    // Errors of run() outside the frame (which reports its own) come after the ranks agreed to
+    // start: the same on every rank, so rank 0 reports them.
     if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
     return 2;
   }

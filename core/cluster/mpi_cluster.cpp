@@ -19,6 +19,7 @@
 #include <oneapi/tbb/task_group.h>
 
 #include "core/cluster/host.h"
+#include "core/cluster/job_description.h"
 #include "core/comm/mpi_communicator.h"
 #include "core/render/reference_render.h"
 #include "core/util/clock.h"
@@ -86,10 +87,19 @@ struct FrameSetup {
   std::unique_ptr<Strategy> strategy;
   FramePlan plan;
   VoxelStorage storage;  //!< every rank derives it from the same volume and options
+  JobDescription job;    //!< this rank's; rank 0's host checks every rank's against its own
 };
 
 void runNode(MpiNetwork& net, const FrameSetup& setup, NodeState& state, int node) {
   MpiCommunicator comm(net, node);
+  // No brick is read until the host has seen that every rank describes the same job: a rank with
+  // another file or other options would otherwise render its share of a different picture.
+  if (node == net.firstLocalNode()) {
+    Message job;
+    job.text = setup.job.serialize();
+    comm.send(Communicator::kHost, kJobTag, std::move(job));
+  }
+  comm.receive(Communicator::kHost, kLoadTag);
   const double start = nowSeconds();
   loadBrick(state, node, setup.source, setup.tree, setup.storage);
   Message ready;
@@ -105,6 +115,17 @@ void runNode(MpiNetwork& net, const FrameSetup& setup, NodeState& state, int nod
 void runHost(MpiNetwork& net, const FrameSetup& setup, const ClusterOptions& options, MpiFrameOutcome& outcome) {
   MpiCommunicator host(net, Communicator::kHost);
   const int nodes = net.nodes();
+  for (int rank = 0; rank < net.worldSize(); ++rank) {
+    const int first = rank * net.nodesPerRank();
+    const std::string who = "rank " + std::to_string(rank) + " (nodes " + std::to_string(first) + ".." +
+                            std::to_string(first + net.nodesPerRank() - 1) + ")";
+    const JobDescription job = JobDescription::parse(host.receive(first, kJobTag).text, who);
+    const std::string difference = job.firstDifference(setup.job, "on rank " + std::to_string(rank), "on rank 0");
+    if (!difference.empty())
+      throw Error(who + " was started with another job than rank 0 (every rank must open the same volume with the "
+                  "same options): " + difference);
+  }
+  for (int v = 0; v < nodes; ++v) host.send(v, kLoadTag, Message{});
   outcome.nodeLoadSeconds.assign(std::size_t(nodes), 0.0);
   for (int v = 0; v < nodes; ++v) {
     const Message m = host.receive(v, kReadyTag);
@@ -155,7 +176,8 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, const VolumeSource* source, 
                                   strategy->treeShape(net.nodes()));
       const FramePlan plan(*request, tree, info.spacing, resolveValueRange(request->settings, info), *strategy);
       const FrameSetup setup{*source, std::move(tree), std::move(strategy), plan,
-                             VoxelStorage::forVolume(info, options.voxels)};
+                             VoxelStorage::forVolume(info, options.voxels),
+                             describeJob(*source, *request, options, net.nodesPerRank())};
       std::vector<NodeState> states(std::size_t(net.nodesPerRank()));
       tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
       arena.execute([&] {

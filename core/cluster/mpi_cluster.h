@@ -17,8 +17,11 @@
 
 namespace kdswap {
 
-//! Message tags of the MPI frame protocol (beside kTileTag): node -> host "brick loaded",
-//! host -> node "start the frame", node -> host "my NodeReport" (JSON text).
+//! Message tags of the MPI frame protocol (beside kTileTag): each rank's first node -> host "my
+//! rank's job description", host -> node "the ranks agree: load your brick", node -> host "brick
+//! loaded", host -> node "start the frame", node -> host "my NodeReport" (JSON text).
+inline constexpr int kJobTag = 15;
+inline constexpr int kLoadTag = 16;
 inline constexpr int kReadyTag = 12;
 inline constexpr int kGoTag = 13;
 inline constexpr int kReportTag = 14;
