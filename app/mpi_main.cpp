@@ -18,6 +18,7 @@
 
 #include "app/scene_options.h"
 #include "core/cluster/mpi_cluster.h"
+#include "core/comm/mpi_agreement.h"
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
 #include "core/util/error.h"
@@ -43,32 +44,6 @@ void checkParentFolderExists(const std::string& path) {
   const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
-}
-
-//! Collective: every rank's state (0: ready; more stops the run: 1 help shown, 2 an error). Returns
-//! the highest, and in `speaker` the lowest rank in that state, which alone prints why. A rank that
-//! stopped alone would leave the others waiting in MPI for ever.
-int worstState(int mine, int ranks, int& speaker) {
-  std::vector<int> all(std::size_t(ranks), 0);
-  MPI_Allgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  const auto worst = std::max_element(all.begin(), all.end());  // the first of the highest
-  speaker = int(worst - all.begin());
-  return *worst;
-}
-
-//! Prints "kdswap-mpi: [rank R: ]PROBLEM": rank 0 speaks for all when every rank has the same
-//! command line, so it does not name itself.
-void printProblem(int rank, const std::string& problem) {
-  std::fprintf(stderr, "kdswap-mpi: %s%s\n", rank == 0 ? "" : ("rank " + std::to_string(rank) + ": ").c_str(),
-               problem.c_str());
-}
-
-//! Collective: true when no rank has a problem; otherwise the lowest rank with one prints it.
-bool allRanksReady(const std::string& problem, int rank, int ranks) {
-  int speaker = 0;
-  if (worstState(problem.empty() ? 0 : 2, ranks, speaker) == 0) return true;
-  if (rank == speaker) printProblem(rank, problem);
-  return false;
 }
 
 //! Collective: ranks that disagree on K would number the nodes differently and wait for messages
@@ -125,33 +100,29 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
   return verified ? 0 : 1;
 }
 
-//! Every rank. Returns the exit code rank 0 decided (all ranks return the same).
+//! Every rank. Returns the exit code rank 0 decided (all ranks return the same). Problems before
+//! the frame are agreed among the ranks (they throw the same kdswap::Error on every rank).
 int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   const int ranks = session.size(), rank = session.rank();
   std::string problem = nodesPerRankDisagreement(o.nodesPerRank, ranks);
+  Scene scene;
   if (problem.empty()) try {
       checkRankOptions(o, ranks, nodesGiven);
+      if (rank == 0) {
+        if (!isSupportedImagePath(o.out)) throw Error("--out " + o.out + ": unsupported image extension");
+        checkParentFolderExists(o.out);
+        if (!o.stats.empty()) checkParentFolderExists(o.stats);
+      }
+      scene = buildScene(o.scene);  // opens the volume on this rank: headers only for plain files
     } catch (const std::exception& e) {
       problem = e.what();
     }
-  if (!allRanksReady(problem, rank, ranks)) return 2;
+  const std::string first = firstProblemOfAnyRank(problem);
+  if (!first.empty()) throw Error(first);
+  const std::unique_ptr<MpiRankFrame> frame = prepareRankFrame(*scene.source, scene.request, scene.cluster, o.nodesPerRank);
 
   MpiNetwork network(o.nodesPerRank, o.stallSeconds);
-  Scene scene;
-  bool prepared = false;
-  try {
-    if (rank == 0) {
-      if (!isSupportedImagePath(o.out)) throw Error("--out " + o.out + ": unsupported image extension");
-      checkParentFolderExists(o.out);
-      if (!o.stats.empty()) checkParentFolderExists(o.stats);
-    }
-    scene = buildScene(o.scene);  // opens the volume on this rank: headers only for plain files
-    prepared = true;
-  } catch (const std::exception& e) {
-    network.abortAll("rank " + std::to_string(rank) + ": " + e.what());
-  }
-  const MpiFrameOutcome outcome = renderFrameOverMpi(network, prepared ? scene.source.get() : nullptr,
-                                                     prepared ? &scene.request : nullptr, scene.cluster);
+  const MpiFrameOutcome outcome = renderFrameOverMpi(network, *frame);
   int code = 0;
   if (rank == 0) {
     try {
@@ -219,22 +190,22 @@ int main(int argc, char** argv) {
                   (std::string(name) == "--stall-timeout" ? "; use --stall-seconds" : "");
         break;
       }
-  const int rank = session->rank();
-  int speaker = 0;
-  const int state = kdswap::worstState(!problem.empty() ? 2 : (help || allHelp) ? 1 : 0, session->size(), speaker);
-  if (state == 2) {
-    if (rank == speaker) kdswap::printProblem(rank, problem);
+  // Collective from here: a rank that stopped alone would leave the others waiting in MPI.
+  const std::string first = kdswap::firstProblemOfAnyRank(problem);
+  if (!first.empty()) {
+    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", first.c_str());
     return 2;
   }
-  if (state == 1) {
-    if (rank == speaker) help ? app.exit(*help) : app.exit(*allHelp);
+  const int asking = kdswap::firstRankWith(help || allHelp);
+  if (asking >= 0) {
+    if (session->rank() == asking) help ? app.exit(*help) : app.exit(*allHelp);
     return 0;
   }
   try {
     return kdswap::run(o, *session, cmd->get_option("--nodes")->count() > 0);
   } catch (const std::exception& e) {
-    // Errors of run() outside the frame (which reports its own) come after the ranks agreed to
-    // start: the same on every rank, so rank 0 reports them.
+    // Problems before the frame are agreed among the ranks (the same message on every rank), and
+    // the frame's own are in its outcome: rank 0 reports them.
     if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
     return 2;
   }

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/cluster/virtual_cluster.h"
+#include "core/partition/kd_tree.h"
 #include "core/render/occlusion_grid.h"
 #include "core/render/occlusion_map.h"
 #include "core/render/ray_caster.h"
@@ -224,6 +225,50 @@ TEST_CASE("occlusion bound: a wall four voxels thick, filling no cell, is credit
       CHECK(o.x + d.x * (float(k) + 0.25f) * step <= float(wallLo + 4));
       CHECK(opacityBefore(whole, table, map.x, map.y, o, d, k, step, 0.25f) >= 0.95f);
     }
+  }
+}
+
+TEST_CASE("cell summary: processes holding different bricks merge theirs into the whole volume's") {
+  // As MPI ranks do (mpi_cluster.cpp): each takes rangesOf its own bricks, the ranges are merged
+  // (min, max), each encodes its bricks' fine codes on the merged ranges, and the codes are merged
+  // (min of lo, max of hi). The result must be the summary fromBricks gives with every brick at hand.
+  for (const char* spec : {"phantom:40", "vessels:40"}) {
+    CAPTURE(spec);
+    auto volume = openDataset(spec);
+    const glm::ivec3 dims = volume->info().dims;
+    const KdTree tree = KdTree::build(dims, 6, PartitionKind::KdTree, 2, {});
+    std::vector<Brick> bricks;
+    for (int b = 0; b < 6; ++b) bricks.push_back(test::brickOf(*volume, tree.brick(b)));
+    const std::vector<std::vector<const Brick*>> processes = {{&bricks[0], &bricks[3]}, {&bricks[1]},
+                                                              {&bricks[2], &bricks[4], &bricks[5]}};
+    std::vector<const Brick*> all;
+    for (const Brick& b : bricks) all.push_back(&b);
+    const CellRangeGrid expected = CellRangeGrid::fromBricks(dims, all);
+
+    std::vector<glm::vec2> merged = CellRangeGrid::rangesOf(dims, processes[0]);
+    for (std::size_t p = 1; p < processes.size(); ++p) {
+      const std::vector<glm::vec2> own = CellRangeGrid::rangesOf(dims, processes[p]);
+      for (std::size_t i = 0; i < merged.size(); ++i)
+        merged[i] = glm::vec2(std::min(merged[i].x, own[i].x), std::max(merged[i].y, own[i].y));
+    }
+    CellRangeGrid grid = CellRangeGrid::withRanges(dims, merged, processes[0]);
+    for (std::size_t p = 1; p < processes.size(); ++p) {
+      const CellRangeGrid own = CellRangeGrid::withRanges(dims, merged, processes[p]);
+      REQUIRE(own.fine.size() == grid.fine.size());
+      for (std::size_t i = 0; i < grid.fine.size(); ++i)
+        grid.fine[i] = {std::min(grid.fine[i].lo, own.fine[i].lo), std::max(grid.fine[i].hi, own.fine[i].hi)};
+    }
+    CHECK(grid.count == expected.count);
+    CHECK(grid.ranges == expected.ranges);
+    CHECK(grid.fineBlock == expected.fineBlock);
+    REQUIRE(grid.fine.size() == expected.fine.size());
+    CHECK(!grid.fine.empty());  // the phantom's skull and the vessels' walls keep fine codes
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < grid.fine.size(); ++i)
+      differing += grid.fine[i].lo != expected.fine[i].lo || grid.fine[i].hi != expected.fine[i].hi;
+    CHECK(differing == 0);
+    // One process alone does not hold the whole summary: the merge is what makes it whole.
+    CHECK(CellRangeGrid::rangesOf(dims, processes[1]) != expected.ranges);
   }
 }
 

@@ -1,7 +1,8 @@
-// MPI frame: per rank, K node tasks (and on rank 0 the host task) in one oneTBB arena, talking
-// through MpiCommunicator. The protocol around the unchanged node program: every node loads its
-// brick and reports "ready" to the host; the host starts the frame on all nodes at once (so
-// wall_s excludes loading, as in VirtualCluster), then gathers each node's tile and report.
+// MPI frame. Before the network runs, collective calls: the ranks agree on the job, load their
+// nodes' bricks (parallel I/O) and merge the culling summary. Then, per rank, K node tasks (and on
+// rank 0 the host task) in one oneTBB arena, talking through MpiCommunicator: every node reports
+// "ready" to the host; the host starts the frame on all nodes at once (so wall_s excludes loading,
+// as in VirtualCluster), then gathers each node's tile and report.
 #include "core/cluster/mpi_cluster.h"
 
 #if KDSWAP_HAVE_MPI
@@ -15,11 +16,13 @@
 #define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #include <nlohmann/json.hpp>
+#include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 #include <oneapi/tbb/task_group.h>
 
 #include "core/cluster/host.h"
 #include "core/cluster/job_description.h"
+#include "core/comm/mpi_agreement.h"
 #include "core/comm/mpi_communicator.h"
 #include "core/render/reference_render.h"
 #include "core/util/clock.h"
@@ -80,57 +83,89 @@ void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdT
   state.brick = Brick(owned, info.dims, info.spacing, std::move(raw), Brick::Shipping::No, 0, storage);
 }
 
-//! Everything the node and host tasks of one rank share for the frame (read-only to the nodes).
-struct FrameSetup {
-  const VolumeSource& source;
-  KdTree tree;
-  std::unique_ptr<Strategy> strategy;
-  FramePlan plan;
-  VoxelStorage storage;  //!< every rank derives it from the same volume and options
-  JobDescription job;    //!< this rank's; rank 0's host checks every rank's against its own
-};
+int worldRank() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
 
-void runNode(MpiNetwork& net, const FrameSetup& setup, NodeState& state, int node) {
-  MpiCommunicator comm(net, node);
-  // No brick is read until the host has seen that every rank describes the same job: a rank with
-  // another file or other options would otherwise render its share of a different picture.
-  if (node == net.firstLocalNode()) {
-    Message job;
-    job.text = setup.job.serialize();
-    comm.send(Communicator::kHost, kJobTag, std::move(job));
+//! Collective: throws on every rank when any rank has a problem (see firstProblemOfAnyRank).
+void agreeOrThrow(const std::string& problem) {
+  const std::string first = firstProblemOfAnyRank(problem);
+  if (!first.empty()) throw Error(first);
+}
+
+//! Collective: rank 0 compares every rank's job with its own; "" when all agree.
+std::string jobDisagreement(const JobDescription& mine, int nodesPerRank) {
+  const std::vector<std::string> all = gatherTextOnRankZero(mine.serialize());
+  for (std::size_t r = 1; r < all.size(); ++r) {
+    const int first = int(r) * nodesPerRank;
+    const std::string who = "rank " + std::to_string(r) + " (nodes " + std::to_string(first) + ".." +
+                            std::to_string(first + nodesPerRank - 1) + ")";
+    std::string difference;
+    try {  // nothing may throw on rank 0 alone between collectives
+      difference = JobDescription::parse(all[r], who).firstDifference(mine, "on rank " + std::to_string(r), "on rank 0");
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    if (!difference.empty())
+      return who + " was started with another job than rank 0 (every rank must open the same volume with the same "
+                   "options): " + difference;
   }
-  comm.receive(Communicator::kHost, kLoadTag);
-  const double start = nowSeconds();
-  loadBrick(state, node, setup.source, setup.tree, setup.storage);
+  return "";
+}
+
+//! Collective: the whole volume's cell summary from every rank's bricks, merged in place (min of
+//! minima, max of maxima; fine codes min of lo, max of hi). MPI counts are ints: sent in chunks.
+template <typename T>
+void allReduceInChunks(T* data, std::size_t count, MPI_Datatype type, MPI_Op op) {
+  constexpr std::size_t kChunk = std::size_t(1) << 28;
+  for (std::size_t at = 0; at < count; at += kChunk)
+    MPI_Allreduce(MPI_IN_PLACE, data + at, int(std::min(kChunk, count - at)), type, op, MPI_COMM_WORLD);
+}
+
+CellRangeGrid mergedCellSummary(const glm::ivec3& dims, const std::vector<NodeState>& states) {
+  std::vector<const Brick*> bricks;
+  for (const NodeState& s : states) bricks.push_back(&s.brick);
+  std::vector<glm::vec2> ranges = CellRangeGrid::rangesOf(dims, bricks);
+  std::vector<float> lows(ranges.size()), highs(ranges.size());
+  for (std::size_t i = 0; i < ranges.size(); ++i) lows[i] = ranges[i].x, highs[i] = ranges[i].y;
+  allReduceInChunks(lows.data(), lows.size(), MPI_FLOAT, MPI_MIN);
+  allReduceInChunks(highs.data(), highs.size(), MPI_FLOAT, MPI_MAX);
+  for (std::size_t i = 0; i < ranges.size(); ++i) ranges[i] = glm::vec2(lows[i], highs[i]);
+  // Every rank picks the same cells for fine codes from the same merged ranges.
+  CellRangeGrid grid = CellRangeGrid::withRanges(dims, std::move(ranges), bricks);
+  std::vector<std::uint8_t> codeLows(grid.fine.size()), codeHighs(grid.fine.size());
+  for (std::size_t i = 0; i < grid.fine.size(); ++i) codeLows[i] = grid.fine[i].lo, codeHighs[i] = grid.fine[i].hi;
+  allReduceInChunks(codeLows.data(), codeLows.size(), MPI_UNSIGNED_CHAR, MPI_MIN);
+  allReduceInChunks(codeHighs.data(), codeHighs.size(), MPI_UNSIGNED_CHAR, MPI_MAX);
+  for (std::size_t i = 0; i < grid.fine.size(); ++i) grid.fine[i] = CellRangeGrid::FineCodes{codeLows[i], codeHighs[i]};
+  return grid;
+}
+
+void runNode(MpiNetwork& net, MpiRankFrame& frame, int local) {
+  const int node = net.firstLocalNode() + local;
+  MpiCommunicator comm(net, node);
   Message ready;
-  ready.header = {std::int64_t((nowSeconds() - start) * 1e9)};
+  ready.header = {std::int64_t(frame.loadSeconds[std::size_t(local)] * 1e9), std::int64_t(frame.mapSeconds * 1e9)};
   comm.send(Communicator::kHost, kReadyTag, std::move(ready));
   comm.receive(Communicator::kHost, kGoTag);
-  const NodeReport report = runNodeFrame(state, comm, setup.plan, nullptr);
+  const NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, frame.plan, nullptr);
   Message out;
   out.text = reportToJson(report).dump();
   comm.send(Communicator::kHost, kReportTag, std::move(out));
 }
 
-void runHost(MpiNetwork& net, const FrameSetup& setup, const ClusterOptions& options, MpiFrameOutcome& outcome) {
+void runHost(MpiNetwork& net, const MpiRankFrame& frame, MpiFrameOutcome& outcome) {
   MpiCommunicator host(net, Communicator::kHost);
   const int nodes = net.nodes();
-  for (int rank = 0; rank < net.worldSize(); ++rank) {
-    const int first = rank * net.nodesPerRank();
-    const std::string who = "rank " + std::to_string(rank) + " (nodes " + std::to_string(first) + ".." +
-                            std::to_string(first + net.nodesPerRank() - 1) + ")";
-    const JobDescription job = JobDescription::parse(host.receive(first, kJobTag).text, who);
-    const std::string difference = job.firstDifference(setup.job, "on rank " + std::to_string(rank), "on rank 0");
-    if (!difference.empty())
-      throw Error(who + " was started with another job than rank 0 (every rank must open the same volume with the "
-                  "same options): " + difference);
-  }
-  for (int v = 0; v < nodes; ++v) host.send(v, kLoadTag, Message{});
   outcome.nodeLoadSeconds.assign(std::size_t(nodes), 0.0);
+  double mapSeconds = 0;
   for (int v = 0; v < nodes; ++v) {
     const Message m = host.receive(v, kReadyTag);
-    if (m.header.size() != 1) throw Error("host: malformed ready message from node " + std::to_string(v));
+    if (m.header.size() != 2) throw Error("host: malformed ready message from node " + std::to_string(v));
     outcome.nodeLoadSeconds[std::size_t(v)] = double(m.header[0]) * 1e-9;
+    mapSeconds = std::max(mapSeconds, double(m.header[1]) * 1e-9);
   }
   const double start = nowSeconds();
   for (int v = 0; v < nodes; ++v) host.send(v, kGoTag, Message{});
@@ -142,16 +177,18 @@ void runHost(MpiNetwork& net, const FrameSetup& setup, const ClusterOptions& opt
   }
   const double gatherStart = nowSeconds();
   FrameResult& result = outcome.result;
-  result.image = assembleTiles(tiles, setup.plan.frame(), &result.tiles);
+  result.image = assembleTiles(tiles, frame.plan.frame(), &result.tiles);
   const double end = nowSeconds();
 
   FrameStats& s = result.stats;
   s.nodes = nodes;
-  s.width = setup.plan.request.width;
-  s.height = setup.plan.request.height;
-  s.strategy = std::string(setup.strategy->name());
-  s.partition = toString(options.partition);
-  s.wallSeconds = end - start;
+  s.width = frame.request.width;
+  s.height = frame.request.height;
+  s.strategy = std::string(frame.strategy->name());
+  s.partition = toString(frame.options.partition);
+  // The occlusion map belongs to the frame (it depends on the view), as in the virtual cluster,
+  // whose wall time includes it; here every rank computes it before the frame starts.
+  s.wallSeconds = end - start + mapSeconds;
   s.gatherSeconds = end - gatherStart;
   // Every rank reads its bricks at once (parallel I/O): the slowest node's load is the figure.
   s.distributeSeconds = *std::max_element(outcome.nodeLoadSeconds.begin(), outcome.nodeLoadSeconds.end());
@@ -160,56 +197,115 @@ void runHost(MpiNetwork& net, const FrameSetup& setup, const ClusterOptions& opt
 
 }  // namespace
 
-MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, const VolumeSource* source, const FrameRequest* request,
-                                   const ClusterOptions& options) {
+MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
+                           int ranks, int nodesPerRank)
+    : source(source),
+      request(request),
+      options(options),
+      nodesPerRank(nodesPerRank),
+      arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
+      // The partition in the strategy's group shape, exactly as the in-process cluster builds it.
+      strategy(createStrategy(options.strategy, options.composite)),
+      tree(KdTree::build(source.info().dims, ranks * nodesPerRank, options.partition, options.slabAxis,
+                         strategy->treeShape(ranks * nodesPerRank))),
+      plan(request, tree, source.info().spacing, resolveValueRange(request.settings, source.info()), *strategy),
+      storage(VoxelStorage::forVolume(source.info(), options.voxels)),
+      states(std::size_t(nodesPerRank)),
+      loadSeconds(std::size_t(nodesPerRank), 0.0) {}
+
+std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const FrameRequest& request,
+                                               const ClusterOptions& options, int nodesPerRank) {
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const int rank = worldRank();
+  std::unique_ptr<MpiRankFrame> frame;
+  std::string problem;
+  try {
+    frame = std::make_unique<MpiRankFrame>(source, request, options, ranks, nodesPerRank);
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  agreeOrThrow(problem);
+
+  // No brick is read until every rank describes the same job: a rank with another file or other
+  // options would otherwise render its share of a different picture.
+  JobDescription job;
+  try {
+    job = describeJob(source, request, options, nodesPerRank);  // reads the middle slice
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  agreeOrThrow(problem);
+  agreeOrThrow(jobDisagreement(job, nodesPerRank));
+
+  try {
+    frame->arena.execute([&] {
+      tbb::parallel_for(0, nodesPerRank, [&](int i) {
+        const double start = nowSeconds();
+        loadBrick(frame->states[std::size_t(i)], rank * nodesPerRank + i, source, frame->tree, frame->storage);
+        frame->loadSeconds[std::size_t(i)] = nowSeconds() - start;
+      });
+    });
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  agreeOrThrow(problem);
+
+  // Occlusion culling, as VirtualCluster::renderFrame does it: the same summary (here merged from
+  // the ranks' bricks), the same grid and the same map, so frames equal the virtual cluster's.
+  if (request.settings.cullOccluded && ranks * nodesPerRank > 1) {
+    const double start = nowSeconds();
+    frame->arena.execute([&] {
+      const CellRangeGrid cells = mergedCellSummary(source.info().dims, frame->states);
+      const glm::vec2 map = normalisingScaleBias(frame->plan.valueRange);
+      frame->occlusionGrid.emplace(cells, frame->plan.table, map.x, map.y, request.settings.earlyTermination);
+      if (frame->occlusionGrid->active()) {
+        const VolumeInfo& info = source.info();
+        frame->occlusionMap.emplace(*frame->occlusionGrid, frame->plan.camera, glm::vec3(info.dims - 1) * info.spacing,
+                                    info.spacing, request.settings);
+        frame->plan.occlusion = &*frame->occlusionMap;
+      }
+    });
+    frame->mapSeconds = nowSeconds() - start;
+  }
+  return frame;
+}
+
+MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, MpiRankFrame& frame) {
   MpiFrameOutcome outcome;
   outcome.ranks = net.worldSize();
   outcome.nodesPerRank = net.nodesPerRank();
   const std::string where = "rank " + std::to_string(net.worldRank());
   bool hostDone = false;
-  if (source && request) {
-    try {
-      const VolumeInfo& info = source->info();
-      // The partition in the strategy's group shape, exactly as the in-process cluster builds it.
-      std::unique_ptr<Strategy> strategy = createStrategy(options.strategy, options.composite);
-      KdTree tree = KdTree::build(info.dims, net.nodes(), options.partition, options.slabAxis,
-                                  strategy->treeShape(net.nodes()));
-      const FramePlan plan(*request, tree, info.spacing, resolveValueRange(request->settings, info), *strategy);
-      const FrameSetup setup{*source, std::move(tree), std::move(strategy), plan,
-                             VoxelStorage::forVolume(info, options.voxels),
-                             describeJob(*source, *request, options, net.nodesPerRank())};
-      std::vector<NodeState> states(std::size_t(net.nodesPerRank()));
-      tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-      arena.execute([&] {
-        tbb::task_group group;
-        // A task that fails tells every rank (abortAll) unless it failed because of an abort,
-        // which the failure that caused it has already reported.
-        auto guarded = [&](const std::string& who, auto&& body) {
-          try {
-            body();
-          } catch (const FrameAborted&) {
-          } catch (const std::exception& e) {
-            net.abortAll(who + ": " + e.what());
-          }
-        };
-        if (net.worldRank() == 0)
-          group.run([&] {
-            guarded("host (" + where + ")", [&] {
-              runHost(net, setup, options, outcome);
-              hostDone = true;
-            });
+  try {
+    frame.arena.execute([&] {
+      tbb::task_group group;
+      // A task that fails tells every rank (abortAll) unless it failed because of an abort,
+      // which the failure that caused it has already reported.
+      auto guarded = [&](const std::string& who, auto&& body) {
+        try {
+          body();
+        } catch (const FrameAborted&) {
+        } catch (const std::exception& e) {
+          net.abortAll(who + ": " + e.what());
+        }
+      };
+      if (net.worldRank() == 0)
+        group.run([&] {
+          guarded("host (" + where + ")", [&] {
+            runHost(net, frame, outcome);
+            hostDone = true;
           });
-        for (int i = 0; i < net.nodesPerRank(); ++i)
-          group.run([&, i] {
-            const int node = net.firstLocalNode() + i;
-            guarded("node " + std::to_string(node) + " (" + where + ")",
-                    [&] { runNode(net, setup, states[std::size_t(i)], node); });
-          });
-        group.wait();
-      });
-    } catch (const std::exception& e) {
-      net.abortAll(where + ": " + e.what());
-    }
+        });
+      for (int i = 0; i < net.nodesPerRank(); ++i)
+        group.run([&, i] {
+          guarded("node " + std::to_string(net.firstLocalNode() + i) + " (" + where + ")",
+                  [&] { runNode(net, frame, i); });
+        });
+      group.wait();
+    });
+  } catch (const std::exception& e) {
+    net.abortAll(where + ": " + e.what());
   }
   net.finish();
 

@@ -1,30 +1,70 @@
 // One frame of the node program on MPI ranks (issue 7): each rank computes the same k-d tree,
 // reads its own nodes' bricks straight from the volume source (parallel I/O, no volume broadcast),
 // renders and composites them with the unchanged node program; rank 0 is also the host and
-// gathers the tiles and every node's report.
+// gathers the tiles and every node's report. Two steps: prepareRankFrame (collective calls while
+// no network runs: the ranks agree on the job, load their bricks and merge the culling summary),
+// then renderFrameOverMpi (the frame, over an MpiNetwork).
 #pragma once
 
 #if KDSWAP_HAVE_MPI
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
+#include <oneapi/tbb/task_arena.h>
 
 #include "core/cluster/virtual_cluster.h"
 #include "core/comm/mpi_network.h"
+#include "core/render/occlusion_grid.h"
+#include "core/render/occlusion_map.h"
 
 namespace kdswap {
 
-//! Message tags of the MPI frame protocol (beside kTileTag): each rank's first node -> host "my
-//! rank's job description", host -> node "the ranks agree: load your brick", node -> host "brick
-//! loaded", host -> node "start the frame", node -> host "my NodeReport" (JSON text).
-inline constexpr int kJobTag = 15;
-inline constexpr int kLoadTag = 16;
+//! Message tags of the MPI frame protocol (beside kTileTag): node -> host "ready" (its brick's load
+//! time and its rank's culling-map time), host -> node "start the frame", node -> host "my
+//! NodeReport" (JSON text).
 inline constexpr int kReadyTag = 12;
 inline constexpr int kGoTag = 13;
 inline constexpr int kReportTag = 14;
+
+//! One rank's part of a frame, ready to render: the partition and plan every rank computes alike,
+//! this rank's nodes with their bricks loaded, and, with occlusion culling, the whole volume's cell
+//! summary (merged from every rank's bricks) and this frame's map. Not copyable: the plan refers
+//! to the request, the strategy and the map.
+struct MpiRankFrame {
+  MpiRankFrame(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
+               int ranks, int nodesPerRank);
+  MpiRankFrame(const MpiRankFrame&) = delete;
+  MpiRankFrame& operator=(const MpiRankFrame&) = delete;
+
+  const VolumeSource& source;
+  const FrameRequest& request;
+  const ClusterOptions& options;
+  int nodesPerRank;
+  tbb::task_arena arena;
+  std::unique_ptr<Strategy> strategy;
+  KdTree tree;
+  FramePlan plan;
+  VoxelStorage storage;
+  std::vector<NodeState> states;    //!< this rank's nodes, firstLocalNode() + i
+  std::vector<double> loadSeconds;  //!< each of this rank's nodes: brick read + gradients
+  std::optional<OcclusionGrid> occlusionGrid;
+  std::optional<OcclusionMap> occlusionMap;
+  double mapSeconds = 0;            //!< this rank's occlusion map, computed before the frame starts
+};
+
+//! Collective over MPI_COMM_WORLD, on the main thread while no MpiNetwork runs; every rank calls
+//! it with its own volume and the request and options of its own command line. The ranks check
+//! that they describe the same job (JobDescription), each loads its nodes' bricks, and with culling
+//! they merge the cell summary (MPI_Allreduce) and each computes the frame's occlusion map, as the
+//! virtual cluster does. A problem on any rank throws kdswap::Error on every rank with the same
+//! one-line message (naming the rank), so all stop together.
+std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const FrameRequest& request,
+                                               const ClusterOptions& options, int nodesPerRank);
 
 struct MpiFrameOutcome {
   bool ok = false;          //!< rank 0: the frame completed; other ranks: no failure seen locally
@@ -38,12 +78,10 @@ struct MpiFrameOutcome {
   nlohmann::json statsJson() const;
 };
 
-//! Collective: every rank calls it once, with the same request and options (built from the same
-//! command line). `source` and `request` are null on a rank that failed to prepare; that rank
-//! must already have called network.abortAll(reason). Finishes `network` (no MPI traffic may
-//! follow through it). Never throws for a node's failure: it is in the outcome on rank 0.
-MpiFrameOutcome renderFrameOverMpi(MpiNetwork& network, const VolumeSource* source, const FrameRequest* request,
-                                   const ClusterOptions& options);
+//! Collective: every rank calls it once with its prepared frame. Finishes `network` (no MPI
+//! traffic may follow through it). Never throws for a node's failure: it is in the outcome on
+//! rank 0.
+MpiFrameOutcome renderFrameOverMpi(MpiNetwork& network, MpiRankFrame& frame);
 
 }  // namespace kdswap
 

@@ -113,14 +113,25 @@ glm::vec2 CellRangeGrid::fineRange(std::size_t cell, FineCodes c) const {
   return glm::vec2(c.lo == 0 ? r.x : float(r.x + c.lo * perCode), c.hi == 255 ? r.y : float(r.x + c.hi * perCode));
 }
 
-CellRangeGrid CellRangeGrid::fromBricks(const glm::ivec3& dims, const std::vector<const Brick*>& bricks) {
+glm::ivec3 CellRangeGrid::cellCount(const glm::ivec3& dims) {
+  return glm::max((dims - 2) / kCell + 1, glm::ivec3(1));  // samples' floors lie in [0, dims - 2]
+}
+
+std::vector<glm::vec2> CellRangeGrid::rangesOf(const glm::ivec3& dims, const std::vector<const Brick*>& bricks) {
+  const glm::ivec3 count = cellCount(dims);
+  std::vector<glm::vec2> ranges(std::size_t(count.x) * count.y * count.z,
+                                glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
+  for (const Brick* b : bricks)
+    if (!b->empty()) b->widenCellRanges(kShift, glm::ivec3(0), count, ranges);
+  return ranges;
+}
+
+CellRangeGrid CellRangeGrid::withRanges(const glm::ivec3& dims, std::vector<glm::vec2> ranges,
+                                        const std::vector<const Brick*>& bricks) {
   CellRangeGrid g;
   g.dims = dims;
-  g.count = glm::max((dims - 2) / kCell + 1, glm::ivec3(1));  // samples' floors lie in [0, dims - 2]
-  g.ranges.assign(std::size_t(g.count.x) * g.count.y * g.count.z,
-                  glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
-  for (const Brick* b : bricks)
-    if (!b->empty()) b->widenCellRanges(kShift, glm::ivec3(0), g.count, g.ranges);
+  g.count = cellCount(dims);
+  g.ranges = std::move(ranges);
   g.fineBlock = chooseFineCells(g.ranges);
   const std::size_t blocks = std::size_t(std::count_if(g.fineBlock.begin(), g.fineBlock.end(), [](std::int32_t b) { return b >= 0; }));
   g.fine.assign(blocks * kFine, FineCodes{255, 0});
@@ -129,6 +140,10 @@ CellRangeGrid CellRangeGrid::fromBricks(const glm::ivec3& dims, const std::vecto
       if (!bricks[i]->empty()) encodeFineRanges(*bricks[i], g);  // each one-voxel cell has one owner
     });
   return g;
+}
+
+CellRangeGrid CellRangeGrid::fromBricks(const glm::ivec3& dims, const std::vector<const Brick*>& bricks) {
+  return withRanges(dims, rangesOf(dims, bricks), bricks);
 }
 
 OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& table, float scale, float bias,

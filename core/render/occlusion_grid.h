@@ -60,8 +60,19 @@ struct CellRangeGrid {
   std::vector<std::int32_t> fineBlock;  //!< per cell: its block of fine codes, or -1
   std::vector<FineCodes> fine;          //!< kFinePerCell per block, x fastest within the cell
 
-  //! From bricks that together own the whole volume (each reads its own voxels).
+  //! From bricks that together own the whole volume (each reads its own voxels):
+  //! withRanges(dims, rangesOf(dims, bricks), bricks).
   static CellRangeGrid fromBricks(const glm::ivec3& dims, const std::vector<const Brick*>& bricks);
+  //! Cells per axis for a volume of `dims`.
+  static glm::ivec3 cellCount(const glm::ivec3& dims);
+  //! The ranges these bricks give (cells they do not reach stay empty, min > max). Processes that
+  //! hold different bricks of one volume (MPI ranks) merge theirs, min of minima and max of maxima,
+  //! into the whole volume's.
+  static std::vector<glm::vec2> rangesOf(const glm::ivec3& dims, const std::vector<const Brick*>& bricks);
+  //! The grid of the whole volume's `ranges`, with the fine codes of the one-voxel cells `bricks`
+  //! own; the others stay empty (lo > hi), so processes merge theirs with min of lo, max of hi.
+  static CellRangeGrid withRanges(const glm::ivec3& dims, std::vector<glm::vec2> ranges,
+                                  const std::vector<const Brick*>& bricks);
   //! The value range fine code `c` of cell `cell` stands for (min > max: none).
   glm::vec2 fineRange(std::size_t cell, FineCodes c) const;
 };

@@ -14,7 +14,7 @@ struct RenderSettings {
   bool jitter = true;               //!< per-ray lattice phase (Ray::offset) against ring artefacts
   bool skipEmptySpace = true;       //!< jump over invisible regions (exact; off only to test that it is)
   //! Skip rays that opaque matter in front of a node's brick ends (exact; see occlusion_grid.h).
-  //! Virtual cluster only: it needs every brick's cell summary, which MPI ranks do not gather yet.
+  //! It needs every brick's cell summary: gathered in the virtual cluster, merged across MPI ranks.
   bool cullOccluded = true;
   float ambient = 0.3f, diffuse = 0.7f, specular = 0.3f, shininess = 24.0f;
   std::optional<glm::vec2> valueRange;  //!< scalar range mapped to [0, 1]; the volume's if unset

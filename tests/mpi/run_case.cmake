@@ -2,10 +2,20 @@
 # R ranks x K nodes; their images must agree to 1e-5 (early ray termination off), and kdswap-mpi
 # --verify checks against the single-node reference.
 # In: KDSWAP, KDSWAP_MPI, COMPARE, MPIEXEC, MPIFLAGS (;-list), RANKS, PER_RANK, WORK, SCENE (;-list).
+# With EXACT set: early ray termination on (the default) and occlusion culling on both sides: the
+# images must be equal bit for bit and the sample counts too (the ranks merge the same culling
+# summary the virtual cluster gathers and compute the same map).
 math(EXPR nodes "${RANKS} * ${PER_RANK}")
 file(MAKE_DIRECTORY ${WORK})
-set(inproc ${KDSWAP} render ${SCENE} --ert 1 --nodes ${nodes} --quiet --out ${WORK}/inproc.exr)
-set(mpi ${MPIEXEC} ${MPIFLAGS} -np ${RANKS} ${KDSWAP_MPI} render ${SCENE} --ert 1 --nodes-per-rank ${PER_RANK}
+if(EXACT)
+  set(ert)
+  set(tolerance 0)
+else()
+  set(ert --ert 1)
+  set(tolerance 1e-5)
+endif()
+set(inproc ${KDSWAP} render ${SCENE} ${ert} --nodes ${nodes} --quiet --out ${WORK}/inproc.exr --stats ${WORK}/inproc.json)
+set(mpi ${MPIEXEC} ${MPIFLAGS} -np ${RANKS} ${KDSWAP_MPI} render ${SCENE} ${ert} --nodes-per-rank ${PER_RANK}
     --verify --out ${WORK}/mpi.exr --stats ${WORK}/mpi.json)
 foreach(step inproc mpi)
   string(REPLACE ";" " " shown "${${step}}")
@@ -15,7 +25,7 @@ foreach(step inproc mpi)
     message(FATAL_ERROR "failed (${rc}); reproduce with:\n  ${shown}")
   endif()
 endforeach()
-execute_process(COMMAND ${COMPARE} ${WORK}/mpi.exr ${WORK}/inproc.exr 1e-5 RESULT_VARIABLE rc)
+execute_process(COMMAND ${COMPARE} ${WORK}/mpi.exr ${WORK}/inproc.exr ${tolerance} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   string(REPLACE ";" " " shown "${mpi}")
   message(FATAL_ERROR "MPI image differs from the in-process one (diff image beside mpi.exr); reproduce with:\n  ${shown}")
@@ -26,4 +36,12 @@ string(JSON ranks GET "${stats}" ranks)
 string(JSON perNode LENGTH "${stats}" per_node)
 if(NOT n EQUAL nodes OR NOT ranks EQUAL RANKS OR NOT perNode EQUAL nodes)
   message(FATAL_ERROR "stats: nodes ${n}, ranks ${ranks}, per_node ${perNode}; expected ${nodes}, ${RANKS}, ${nodes}")
+endif()
+if(EXACT)
+  file(READ ${WORK}/inproc.json inprocStats)
+  string(JSON mpiSamples GET "${stats}" samples)
+  string(JSON inprocSamples GET "${inprocStats}" samples)
+  if(NOT mpiSamples EQUAL inprocSamples)
+    message(FATAL_ERROR "samples: ${mpiSamples} over MPI, ${inprocSamples} in process (culling differs)")
+  endif()
 endif()
