@@ -30,9 +30,13 @@ class NodePhaseObserver : public PhaseObserver {
   }
 
   void endPhase(const Rect& region, const Image& image, std::int64_t pixels) override {
+    const double end = nowSeconds();
     const CommCounters& now = comm_.counters();
+    // One reading of the clock for both, so the wait and the compute time fill [start, end].
+    current_.start = startTime_;
+    current_.end = end;
     current_.waitSeconds = now.waitSeconds - startCounters_.waitSeconds;
-    current_.computeSeconds = std::max(0.0, nowSeconds() - startTime_ - current_.waitSeconds);
+    current_.computeSeconds = std::max(0.0, end - startTime_ - current_.waitSeconds);
     current_.bytesSent = now.bytesSent - startCounters_.bytesSent;
     current_.bytesReceived = now.bytesReceived - startCounters_.bytesReceived;
     current_.messagesSent = now.messagesSent - startCounters_.messagesSent;
@@ -133,6 +137,7 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
     if (it == node.pieces.end())
       throw Error("node " + std::to_string(rank) + ": was given brick " + std::to_string(brick) + " but does not hold it");
     RenderCounters counters;
+    const double start = nowSeconds();
     const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
                            emptySpaceFor(node.pieceEmptySpace[brick], it->second, plan));
     rendered.emplace_back(brick, caster.render(plan.camera, counters));
@@ -140,8 +145,9 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
     report.rays += counters.rays;
     report.samples += counters.samples;
     report.occluded += counters.occluded;
-    report.bricks.push_back({brick, counters.seconds, counters.rays, counters.samples});
+    report.bricks.push_back({brick, counters.seconds, counters.rays, counters.samples, start, nowSeconds()});
   }
+  report.renderEnd = nowSeconds();
 
   observer.beginPhase("bricks", -1);
   std::map<int, Image> mine;
@@ -179,6 +185,10 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
 NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& plan, PhaseRecord* record) {
   NodeReport report;
   report.rank = comm.rank();
+  // The render step starts when this node's task does: on a machine with fewer cores than nodes
+  // that is when a core became free, so a timeline shows the node's wait for one.
+  report.timed = true;
+  report.renderStart = nowSeconds();
   std::vector<PhaseCell>* cells = record ? &record->cells[std::size_t(comm.rank())] : nullptr;
   NodePhaseObserver observer(comm, report, cells);
 
@@ -194,6 +204,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     // with an empty pixel changes nothing), and with every node's partial image alive at once
     // before compositing, those margins were most of a frame's memory at large P.
     partial = trimToContent(std::move(partial));
+    report.renderEnd = nowSeconds();
     report.renderSeconds = counters.seconds;
     report.rays = counters.rays;
     report.samples = counters.samples;

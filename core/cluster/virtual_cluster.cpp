@@ -362,6 +362,8 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   s.network = options_.network;
   if (!options_.speeds.empty())
     for (NodeReport& n : reports) n.speed = options_.speeds[std::size_t(n.rank)];
+  // Every node read the same steady clock: one origin puts them all on the frame's time line.
+  for (NodeReport& n : reports) n.rebaseTimes(start);
   s.perNode = std::move(reports);
   return result;
 }

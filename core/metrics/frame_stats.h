@@ -23,6 +23,8 @@ struct FrameStats {
   double gatherSeconds = 0;      //!< image gather on the host for this frame
   std::uint64_t peakRssBytes = 0;
   NetworkModel network;          //!< costs messages in the modelled time
+  //! Each node's report; where timed, its start and end times are seconds since the frame's
+  //! start (the host starting the frame, the origin of wallSeconds).
   std::vector<NodeReport> perNode;
 
   double renderMax() const;      //!< max over nodes of render work / node speed

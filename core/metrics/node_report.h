@@ -1,4 +1,5 @@
-// What one node measured in one frame: the quantities of the paper's tables, per phase.
+// What one node measured in one frame: the quantities of the paper's tables, per phase, and when
+// (a timeline: the wall interval of rendering and of each phase).
 #pragma once
 
 #include <cstdint>
@@ -19,11 +20,23 @@ struct PhaseStats {
   std::int64_t pixels = 0;   //!< pixels composited
   std::uint64_t bytesSent = 0, bytesReceived = 0;
   std::uint64_t messagesSent = 0, messagesReceived = 0;
+  //! The phase's wall interval, from beginPhase to endPhase: its wait and compute lie inside it
+  //! and fill it (end - start == waitSeconds + computeSeconds). Clock: see NodeReport::timed.
+  double start = 0, end = 0;
 };
 
 struct NodeReport {
   int rank = -1;
   double renderSeconds = 0;       //!< ray-casting work on one processor
+  //! Wall interval of the render step: from the node's task starting the frame to its partial
+  //! image ready to composite (with over-decomposition: brick shipping and every brick rendered).
+  //! Its length is not renderSeconds: the caster's tiles may run on several threads at once, and
+  //! the task may wait for a core or for a shipped brick.
+  double renderStart = 0, renderEnd = 0;
+  //! The start and end times are set. In the node program they are absolute nowSeconds(); a
+  //! cluster's FrameStats holds them as seconds since the frame's start (rebaseTimes). Reports
+  //! that travel without them (MPI frames) have it false and every time 0.
+  bool timed = false;
   //! Relative speed of the processor this node models (1 = this machine's core). Modelled times
   //! divide measured work by it; measured figures stay as measured.
   double speed = 1.0;
@@ -36,8 +49,16 @@ struct NodeReport {
     int brick = -1;
     double seconds = 0;
     std::uint64_t rays = 0, samples = 0;
+    double start = 0, end = 0;  //!< wall interval of this brick's ray casting (same clock)
   };
   std::vector<BrickRender> bricks;
+
+  //! Moves every time to a clock starting at `origin` (absolute seconds): the frame's start.
+  void rebaseTimes(double origin) {
+    renderStart -= origin, renderEnd -= origin;
+    for (PhaseStats& p : phases) p.start -= origin, p.end -= origin;
+    for (BrickRender& b : bricks) b.start -= origin, b.end -= origin;
+  }
 
   double modelledRenderSeconds() const { return renderSeconds / speed; }
   double compositeSeconds() const {
