@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/composite/registry.h"
 #include "test_support.h"
 
@@ -146,4 +148,45 @@ TEST_CASE("with over-decomposition each brick's ray casting lies inside its node
     bricks += n.bricks.size();
   }
   CHECK(bricks == 16);
+  const nlohmann::json j = s.toJson();
+  for (const nlohmann::json& n : j["per_node"]) {
+    REQUIRE(n.contains("bricks_rendered"));
+    REQUIRE(n.contains("brick_intervals_s"));
+    CHECK(n["brick_intervals_s"].size() == n["bricks_rendered"].size());
+  }
+}
+
+TEST_CASE("the stats JSON carries the timeline keys beside the existing ones, and omits them without times") {
+  auto volume = test::makeBlobs({24, 24, 24});
+  ClusterOptions options;
+  options.nodes = 4;
+  VirtualCluster cluster(*volume, options);
+  FrameStats s = cluster.renderFrame(smallRequest()).stats;
+  nlohmann::json j = s.toJson();
+  REQUIRE(j["per_node"].size() == 4);
+  for (std::size_t r = 0; r < 4; ++r) {
+    const nlohmann::json& n = j["per_node"][r];
+    const NodeReport& report = s.perNode[r];
+    for (const char* key : {"rank", "render_s", "speed", "composite_s", "wait_s", "bytes_sent", "private_bytes", "phases"})
+      CHECK_MESSAGE(n.contains(key), key);
+    CHECK(n["render_start_s"].get<double>() == report.renderStart);
+    CHECK(n["render_end_s"].get<double>() == report.renderEnd);
+    REQUIRE(n["phases"].size() == report.phases.size());
+    REQUIRE(!report.phases.empty());
+    for (std::size_t k = 0; k < report.phases.size(); ++k) {
+      const nlohmann::json& p = n["phases"][k];
+      for (const char* key : {"label", "partner", "composite_s", "wait_s", "messages_sent"}) CHECK_MESSAGE(p.contains(key), key);
+      CHECK(p["start_s"].get<double>() == report.phases[k].start);
+      CHECK(p["end_s"].get<double>() == report.phases[k].end);
+      CHECK(p["end_s"].get<double>() <= j["wall_s"].get<double>() + kClockTolerance);
+    }
+  }
+  // A report that travelled without times (an MPI frame's) has no timeline keys rather than zeros.
+  for (NodeReport& n : s.perNode) n.timed = false;
+  j = s.toJson();
+  for (const nlohmann::json& n : j["per_node"]) {
+    CHECK_FALSE(n.contains("render_start_s"));
+    CHECK_FALSE(n.contains("render_end_s"));
+    for (const nlohmann::json& p : n["phases"]) CHECK_FALSE(p.contains("start_s"));
+  }
 }

@@ -103,22 +103,37 @@ nlohmann::json FrameStats::toJson() const {
     nj["samples"] = n.samples;
     nj["bytes_sent"] = n.bytesSent();
     nj["private_bytes"] = n.privateBytes;
+    // The timeline keys only where the report carries times: absent, not 0, for MPI frames.
+    if (n.timed) {
+      nj["render_start_s"] = n.renderStart;
+      nj["render_end_s"] = n.renderEnd;
+    }
     if (!n.bricks.empty()) {
-      nlohmann::json bricks = nlohmann::json::array();
-      for (const NodeReport::BrickRender& b : n.bricks) bricks.push_back(b.brick);
+      nlohmann::json bricks = nlohmann::json::array(), intervals = nlohmann::json::array();
+      for (const NodeReport::BrickRender& b : n.bricks) {
+        bricks.push_back(b.brick);
+        intervals.push_back({b.start, b.end});
+      }
       nj["bricks_rendered"] = std::move(bricks);
+      if (n.timed) nj["brick_intervals_s"] = std::move(intervals);
     }
     nlohmann::json phases = nlohmann::json::array();
-    for (const PhaseStats& p : n.phases)
-      phases.push_back({{"label", p.label},
-                        {"partner", p.partner},
-                        {"region", {p.region.x, p.region.y, p.region.w, p.region.h}},
-                        {"composite_s", p.computeSeconds},
-                        {"wait_s", p.waitSeconds},
-                        {"pixels", p.pixels},
-                        {"bytes_sent", p.bytesSent},
-                        {"bytes_received", p.bytesReceived},
-                        {"messages_sent", p.messagesSent}});
+    for (const PhaseStats& p : n.phases) {
+      nlohmann::json pj = {{"label", p.label},
+                           {"partner", p.partner},
+                           {"region", {p.region.x, p.region.y, p.region.w, p.region.h}},
+                           {"composite_s", p.computeSeconds},
+                           {"wait_s", p.waitSeconds},
+                           {"pixels", p.pixels},
+                           {"bytes_sent", p.bytesSent},
+                           {"bytes_received", p.bytesReceived},
+                           {"messages_sent", p.messagesSent}};
+      if (n.timed) {
+        pj["start_s"] = p.start;
+        pj["end_s"] = p.end;
+      }
+      phases.push_back(std::move(pj));
+    }
     nj["phases"] = std::move(phases);
     nodesJson.push_back(std::move(nj));
   }
