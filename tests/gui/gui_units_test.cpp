@@ -1,9 +1,11 @@
 // The GUI's logic that needs no window: the histogram under the transfer-function editor, the
-// speedup sweep's warm-up and medians, error text safe to print, and the data-set error messages.
+// speedup sweep's warm-up and medians, error text safe to print, the data-set error messages, and
+// the timeline's bars, rows and ticks.
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <thread>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "ui/printable_text.h"
 #include "ui/render_worker.h"
 #include "ui/sweep_worker.h"
+#include "ui/timeline_layout.h"
 
 namespace kdswap {
 namespace {
@@ -113,6 +116,154 @@ TEST_CASE("gui speedup sweep: a warm-up frame, then the median of several frames
     CHECK(points[i].modelledMin <= points[i].modelledSeconds);
     CHECK(points[i].modelledSeconds <= points[i].modelledMax);
   }
+}
+
+
+namespace {
+
+double lengthOf(const std::vector<TimelineBar>& bars, TimelineBar::Kind kind) {
+  double s = 0;
+  for (const TimelineBar& b : bars)
+    if (b.kind == kind) s += b.end - b.start;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("gui timeline: a frame's bars follow each node from 0 to its last phase, each phase filled by wait then composite") {
+  std::shared_ptr<const VolumeSource> source = openDataset("phantom:24");
+  FrameRequest request;
+  request.width = request.height = 48;
+  request.transfer = loadTransferFunction("phantom");
+  for (const char* strategy : {"binary-swap", "direct-send"}) {
+    ClusterOptions options;
+    options.nodes = 8;
+    options.strategy = strategy;
+    VirtualCluster cluster(*source, options);
+    const FrameStats stats = cluster.renderFrame(request).stats;
+    REQUIRE(hasTimeline(stats));
+    const double span = timelineSpan(stats, false);
+    CHECK(span >= stats.wallSeconds);
+    for (const NodeReport& n : stats.perNode) {
+      CAPTURE(strategy);
+      CAPTURE(n.rank);
+      const std::vector<TimelineBar> bars = timelineBars(n, false);
+      REQUIRE(!bars.empty());
+      CHECK(bars.front().start == 0.0);
+      double t = 0;
+      for (std::size_t i = 0; i < bars.size(); ++i) {
+        const TimelineBar& b = bars[i];
+        CHECK(b.start >= t - 1e-12);  // in order, never overlapping
+        CHECK(b.end >= b.start);
+        CHECK(b.end <= span);
+        switch (b.kind) {
+          case TimelineBar::Kind::NotStarted: CHECK(b.end == n.renderStart); break;
+          case TimelineBar::Kind::Render: CHECK((b.start == n.renderStart && b.end == n.renderEnd)); break;
+          case TimelineBar::Kind::Wait:
+            CHECK(b.start == n.phases[std::size_t(b.phase)].start);
+            REQUIRE(i + 1 < bars.size());
+            CHECK(bars[i + 1].phase == b.phase);  // the phase's compositing follows its wait at once
+            CHECK(bars[i + 1].start == b.end);
+            break;
+          case TimelineBar::Kind::Composite: CHECK(b.end == n.phases[std::size_t(b.phase)].end); break;
+          case TimelineBar::Kind::Brick: FAIL("no over-decomposition in this frame"); break;
+        }
+        t = b.end;
+      }
+      CHECK(t == n.phases.back().end);
+      // The wait and composite bars add up to the node's totals.
+      CHECK(lengthOf(bars, TimelineBar::Kind::Wait) == doctest::Approx(n.waitSeconds()).epsilon(1e-9));
+      CHECK(lengthOf(bars, TimelineBar::Kind::Composite) == doctest::Approx(n.compositeSeconds()).epsilon(1e-9));
+      CHECK(lengthOf(bars, TimelineBar::Kind::Render) == doctest::Approx(n.renderEnd - n.renderStart));
+    }
+  }
+}
+
+TEST_CASE("gui timeline: a report without times, or durations only, lays the durations end to end") {
+  NodeReport n;
+  n.renderSeconds = 0.004;
+  PhaseStats a, b;
+  a.waitSeconds = 0.002, a.computeSeconds = 0.001;
+  b.waitSeconds = 0.0, b.computeSeconds = 0.0005;
+  n.phases = {a, b};
+  FrameStats stats;
+  stats.wallSeconds = 0.1;
+  stats.perNode = {n};
+  CHECK_FALSE(hasTimeline(stats));
+  const std::vector<TimelineBar> bars = timelineBars(n, false);  // no times: durations anyway
+  REQUIRE(bars.size() == 4);  // render, wait + composite, composite (no empty wait bar)
+  CHECK(bars[0].kind == TimelineBar::Kind::Render);
+  CHECK(bars[1].kind == TimelineBar::Kind::Wait);
+  CHECK(bars[1].start == doctest::Approx(0.004));
+  CHECK(bars[2].phase == 0);
+  CHECK(bars[3].phase == 1);
+  CHECK(bars[3].end == doctest::Approx(0.0075));
+  CHECK(timelineSpan(stats, true) == doctest::Approx(0.0075));  // the longest sum, not the wall time
+  // With times, the same report as a timeline: not started, then where it really ran.
+  n.timed = true;
+  n.renderStart = 0.010, n.renderEnd = 0.014;
+  n.phases[0].start = 0.014, n.phases[0].end = 0.017;
+  n.phases[1].start = 0.017, n.phases[1].end = 0.0175;
+  const std::vector<TimelineBar> timeline = timelineBars(n, false);
+  REQUIRE(timeline.size() == 5);
+  CHECK(timeline[0].kind == TimelineBar::Kind::NotStarted);
+  CHECK(timeline[0].end == 0.010);
+  CHECK(timeline[2].end == doctest::Approx(0.016));  // wait first, then compositing
+  CHECK(timeline[3].start == doctest::Approx(0.016));
+  CHECK(timelineBars(n, true).size() == 4);  // "durations only" overrides the times
+}
+
+TEST_CASE("gui timeline: hovering finds the bar under the mouse, a brick before its render step") {
+  std::vector<TimelineBar> bars(3);
+  bars[0] = {TimelineBar::Kind::Render, -1, -1, 1.0, 5.0};
+  bars[1] = {TimelineBar::Kind::Brick, -1, 0, 2.0, 3.0};
+  bars[2] = {TimelineBar::Kind::Wait, 0, -1, 5.0, 5.01};
+  CHECK(barAt(bars, 1.5, 0.0) == 0);
+  CHECK(barAt(bars, 2.5, 0.0) == 1);
+  CHECK(barAt(bars, 5.005, 0.0) == 2);
+  CHECK(barAt(bars, 5.05, 0.1) == 2);   // a thin bar within a pixel's slack
+  CHECK(barAt(bars, 0.5, 0.1) == -1);
+  CHECK(barAt(bars, 6.0, 0.1) == -1);
+}
+
+TEST_CASE("gui timeline: ticks are 1, 2 or 5 x 10^k s, the closest that keep their labels apart") {
+  CHECK(tickStep(0.0924, 290, 56) == doctest::Approx(0.02));
+  CHECK(tickStep(0.0095, 290, 56) == doctest::Approx(0.002));
+  CHECK(tickStep(1.0, 100, 100) == doctest::Approx(1.0));
+  for (double span = 1e-5; span < 100; span *= 1.37)
+    for (float width : {80.0f, 290.0f, 1200.0f}) {
+      const double step = tickStep(span, width, 56);
+      CAPTURE(span);
+      CAPTURE(width);
+      CHECK(step * width / span >= 56 * (1 - 1e-9));  // far enough apart
+      const double mantissa = step / std::pow(10.0, std::floor(std::log10(step) + 1e-9));
+      CHECK((std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 5) < 1e-9));
+      // The next smaller nice step (5 -> 2, 2 -> 1, 1 -> 0.5) would crowd them.
+      const double smaller = step * (std::abs(mantissa - 2) < 1e-9 ? 0.5 : std::abs(mantissa - 5) < 1e-9 ? 0.4 : 0.5);
+      CHECK(smaller * width / span < 56);
+    }
+}
+
+TEST_CASE("gui timeline: rows fill the panel at 8 and 64 nodes, and scroll at 512 and 4096") {
+  const TimelineRows eight = timelineRows(8, 370, 2, 28, 16);
+  CHECK(eight.height == 28);  // capped: 8 rows are not each a panel high
+  CHECK(eight.labelEvery == 1);
+  CHECK(eight.gap > 0);
+  const TimelineRows many = timelineRows(64, 370, 2, 28, 16);
+  CHECK(many.height == 5);
+  CHECK(many.total <= 370);
+  CHECK(many.labelEvery == 4);  // labels 20 px apart, not 5
+  for (int nodes : {512, 4096}) {
+    const TimelineRows rows = timelineRows(nodes, 370, 2, 28, 16);
+    CHECK(rows.height == 2);
+    CHECK(rows.gap == 0);
+    CHECK(rows.total == 2.0f * float(nodes));  // more than 370: the list scrolls
+    CHECK(float(rows.labelEvery) * rows.height >= 16);
+  }
+  const TimelineRows rows = timelineRows(4096, 370, 2, 28, 16);
+  CHECK(visibleRows(rows, 4096, 100, 370) == std::pair<int, int>(50, 235));
+  CHECK(visibleRows(rows, 4096, 8192 - 370, 370) == std::pair<int, int>(4096 - 185, 4096));
+  CHECK(visibleRows(eight, 8, 0, 370) == std::pair<int, int>(0, 8));
 }
 
 }  // namespace kdswap
