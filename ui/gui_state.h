@@ -60,6 +60,10 @@ struct TransferUi {
   int preset = -1;
 };
 
+struct TimelineUi {
+  bool durationsOnly = false;  //!< lay durations end to end (the view before frames carried times)
+};
+
 struct SettingsUi {
   std::string typedData;  //!< the path or spec being typed
   int nodes = 0;          //!< the node count while its slider is dragged
@@ -95,6 +99,7 @@ struct GuiState {
   StagesUi stages;
   TransferUi transfer;
   SettingsUi settings;
+  TimelineUi timeline;
   SweepWorker* sweep = nullptr;
   std::vector<std::string> dataChoices;  //!< built-in specs, then files found
   DrawnLayout layout;

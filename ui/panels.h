@@ -15,6 +15,8 @@ void drawStagesPanel(GuiState& state);
 void drawTransferPanel(GuiState& state);
 void drawTimingPanel(GuiState& state);
 void drawSettingsPanel(GuiState& state);
+//! The Timing panel's Timeline tab (timeline_view.cpp): the frame's per-node Gantt chart.
+void drawTimelineTab(const FrameSnapshot& frame, TimelineUi& ui);
 
 //! A distinct colour per node, shared by the brick overlay, the stages headers and the timeline.
 inline ImU32 nodeColour(int rank, float alpha = 1.0f) {

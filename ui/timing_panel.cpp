@@ -1,11 +1,9 @@
-// Timing: per-node time split of the newest full frame (render, then wait and composite per
-// phase, durations end to end: the stats carry no start times), the paper-style table (maximum
-// over nodes), and the speedup over node counts (Figures 7-8).
+// Timing: the newest full frame's per-node timeline (timeline_view.cpp), the paper-style table
+// (maximum over nodes), and the speedup over node counts (Figures 7-8).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <thread>
 
 #include "ui/panels.h"
 #include "ui/printable_text.h"
@@ -13,97 +11,8 @@
 namespace kdswap {
 namespace {
 
-const ImU32 kRenderColour = IM_COL32(80, 150, 230, 255);
-const ImU32 kWaitColour = IM_COL32(95, 95, 105, 255);
 const ImU32 kCompositeColour = IM_COL32(240, 150, 60, 255);
 const std::vector<int> kSweepCounts = {1, 2, 4, 8, 16, 32, 64};
-
-// A legend entry after the previous one, or on the next line when the line is full.
-void legendSwatch(ImU32 colour, const char* text, bool first) {
-  if (!first) sameLineIfFits(12 + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize(text).x);
-  const ImVec2 p = ImGui::GetCursorScreenPos();
-  ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + 3), ImVec2(p.x + 10, p.y + 13), colour);
-  ImGui::Dummy(ImVec2(12, 14));
-  ImGui::SameLine();
-  ImGui::TextUnformatted(text);
-}
-
-double nodeTotal(const NodeReport& n) { return n.renderSeconds + n.waitSeconds() + n.compositeSeconds(); }
-
-void drawTimeSplit(const FrameStats& stats) {
-  legendSwatch(kRenderColour, "render", true);
-  legendSwatch(kWaitColour, "wait", false);
-  legendSwatch(kCompositeColour, "composite", false);
-  sameLineIfFits(ImGui::CalcTextSize("(?)").x);
-  // The frame stats hold each node's durations, not when its work started: bars laid end to end
-  // from 0 would read as a timeline, which they are not (say so, and why the waits are long).
-  ImGui::TextDisabled("(?)");
-  if (ImGui::IsItemHovered()) {
-    ImGui::BeginTooltip();
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
-    ImGui::TextUnformatted(
-        "Each bar is one node's measured durations laid end to end: render, then per compositing "
-        "phase the time it waited for its partner's message and the time it composited. They are "
-        "not start times: a node's work did not begin at 0, and nodes may wait while another "
-        "finishes.");
-    ImGui::Spacing();
-    ImGui::Text("The %s share this machine's %u cores: a wait includes the time the partner spent "
-                "waiting for a core, and render is the node's ray-casting work summed over its image "
-                "tiles (its time on one processor).",
-                counted(stats.nodes, "virtual node").c_str(), std::max(1u, std::thread::hardware_concurrency()));
-    ImGui::PopTextWrapPos();
-    ImGui::EndTooltip();
-  }
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextDisabled("Per-node time split (durations end to end), not a timeline.");
-  ImGui::PopTextWrapPos();
-  double longest = 1e-9;
-  for (const NodeReport& n : stats.perNode) longest = std::max(longest, nodeTotal(n));
-  const int nodes = int(stats.perNode.size());
-  ImGui::BeginChild("timeline", ImVec2(0, 0), false);
-  const float rowH = std::clamp((ImGui::GetContentRegionAvail().y - 24) / float(std::max(nodes, 1)), 4.0f, 18.0f);
-  const float labelW = rowH >= 12 ? 34.0f : 0.0f;
-  const float barW = std::max(ImGui::GetContentRegionAvail().x - labelW - 4, 20.0f);
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  ImDrawList* draw = ImGui::GetWindowDrawList();
-  const float scale = barW / float(longest);
-  for (int r = 0; r < nodes; ++r) {
-    const NodeReport& n = stats.perNode[std::size_t(r)];
-    const float y0 = origin.y + float(r) * rowH, y1 = y0 + rowH - (rowH > 6 ? 2.0f : 1.0f);
-    if (labelW > 0) draw->AddText(ImVec2(origin.x, y0 + 0.5f * (rowH - 14)), nodeColour(r), std::to_string(r).c_str());
-    float x = origin.x + labelW;
-    auto bar = [&](double seconds, ImU32 colour) {
-      const float x1 = x + float(seconds) * scale;
-      if (x1 > x) draw->AddRectFilled(ImVec2(x, y0), ImVec2(std::max(x1, x + 1), y1), colour);
-      x = x1;
-    };
-    bar(n.renderSeconds, kRenderColour);
-    for (const PhaseStats& p : n.phases) {
-      bar(p.waitSeconds, kWaitColour);
-      const float start = x;
-      bar(p.computeSeconds, kCompositeColour);
-      if (rowH >= 8) draw->AddLine(ImVec2(start, y0), ImVec2(start, y1), IM_COL32(0, 0, 0, 160));
-    }
-    const ImVec2 m = ImGui::GetIO().MousePos;
-    if (ImGui::IsWindowHovered() && m.y >= y0 && m.y < y0 + rowH && m.x >= origin.x) {
-      ImGui::BeginTooltip();
-      ImGui::Text("node %d: render %.2f ms", r, n.renderSeconds * 1e3);
-      for (std::size_t k = 0; k < n.phases.size(); ++k)
-        ImGui::Text("phase %zu %s (partner %d): wait %.2f ms, composite %.2f ms", k + 1, n.phases[k].label.c_str(),
-                    n.phases[k].partner, n.phases[k].waitSeconds * 1e3, n.phases[k].computeSeconds * 1e3);
-      ImGui::EndTooltip();
-    }
-  }
-  const float axisY = origin.y + float(nodes) * rowH + 4;
-  char text[48];
-  std::snprintf(text, sizeof text, "%.1f ms (longest sum)", longest * 1e3);
-  const float textX = std::max(origin.x, origin.x + labelW + barW - ImGui::CalcTextSize(text).x);
-  if (textX > origin.x + labelW + ImGui::CalcTextSize("0").x + 8)
-    draw->AddText(ImVec2(origin.x + labelW, axisY), IM_COL32(160, 160, 160, 255), "0");
-  draw->AddText(ImVec2(textX, axisY), IM_COL32(160, 160, 160, 255), text);
-  ImGui::Dummy(ImVec2(barW + labelW, float(nodes) * rowH + 20));
-  ImGui::EndChild();
-}
 
 void tableRow(const char* name, const char* format, double value, bool indented = false) {
   ImGui::TableNextRow();
@@ -242,8 +151,8 @@ void drawTimingPanel(GuiState& state) {
     return;
   }
   if (ImGui::BeginTabBar("timing")) {
-    if (ImGui::BeginTabItem("Time split")) {
-      if (state.fullFrame) drawTimeSplit(state.fullFrame->stats);
+    if (ImGui::BeginTabItem("Timeline")) {
+      if (state.fullFrame) drawTimelineTab(*state.fullFrame, state.timeline);
       else ImGui::TextDisabled("Waiting for the first full frame...");
       ImGui::EndTabItem();
     }
