@@ -144,31 +144,71 @@ void drawAxis(ImDrawList* draw, float x0, float barW, float y, double span, doub
   }
 }
 
+//! Where the rows' time axis lies in the window: x = x0 + t * scale.
+struct Chart {
+  float x0 = 0;
+  double scale = 1;
+  bool timeline = true;   //!< real start times (else durations end to end)
+  bool hasBricks = false;
+  float xOf(double t) const { return x0 + float(t * scale); }
+};
+
+// Legend, help and the "durations only" switch; a note when the bars are not a timeline.
+void drawHeader(const FrameSnapshot& frame, TimelineUi& ui, bool timed, const Chart& chart) {
+  const bool bricks = chart.hasBricks && chart.timeline;
+  legendSwatch(kRenderColour, bricks ? "brick" : "render", true);
+  if (bricks) legendSwatch(kRenderStepColour, "render step", false);
+  legendSwatch(kWaitColour, "wait", false);
+  legendSwatch(kCompositeColour, "composite", false);
+  if (chart.timeline) legendSwatch(kNotStartedColour, "not started", false, true);
+  helpMarker(frame, chart.timeline);
+  if (timed) {
+    sameLineIfFits(labelledWidth(ImGui::GetFrameHeight(), "durations only"));
+    ImGui::Checkbox("durations only", &ui.durationsOnly);
+  }
+  if (chart.timeline) return;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled(timed ? "Per-node durations laid end to end, not a timeline."
+                            : "This frame's reports carry no start times: durations laid end to end, not a timeline.");
+  ImGui::PopTextWrapPos();
+}
+
+// One node's row between y0 and y1, with the tooltip of the bar under the mouse.
+void drawRow(ImDrawList* draw, const Chart& chart, const NodeReport& n, float y0, float y1, bool hovered) {
+  const std::vector<TimelineBar> bars = timelineBars(n, !chart.timeline);
+  for (const TimelineBar& b : bars) {
+    const float a = chart.xOf(b.start), e = std::max(chart.xOf(b.end), a + 1);
+    if (b.kind == Kind::NotStarted) {
+      const float mid = std::floor(0.5f * (y0 + y1));
+      draw->AddLine(ImVec2(a, mid), ImVec2(e, mid), kNotStartedColour);
+    } else {
+      draw->AddRectFilled(ImVec2(a, y0), ImVec2(e, y1), colourOf(b, chart.hasBricks));
+    }
+  }
+  // Phase boundaries: one phase's wait would otherwise run into the next one's.
+  if (y1 - y0 >= 5)
+    for (const TimelineBar& b : bars)
+      if (b.phase >= 0 && (b.kind == Kind::Wait || n.phases[std::size_t(b.phase)].waitSeconds <= 0))
+        draw->AddLine(ImVec2(chart.xOf(b.start), y0), ImVec2(chart.xOf(b.start), y1), IM_COL32(0, 0, 0, 170));
+  if (!hovered) return;
+  // A bar thinner than a pixel is still found within two pixels of the mouse.
+  const int at = barAt(bars, (ImGui::GetIO().MousePos.x - chart.x0) / chart.scale, 2.0 / chart.scale);
+  if (at < 0) return;
+  const TimelineBar& b = bars[std::size_t(at)];
+  const float a = chart.xOf(b.start), e = std::max(chart.xOf(b.end), a + 1);
+  draw->AddRect(ImVec2(a - 1, y0 - 1), ImVec2(e + 1, y1 + 1), IM_COL32(255, 255, 255, 230));
+  barTooltip(n, b, chart.timeline);
+}
+
 }  // namespace
 
 void drawTimelineTab(const FrameSnapshot& frame, TimelineUi& ui) {
   const FrameStats& stats = frame.stats;
   const bool timed = hasTimeline(stats);
-  const bool timeline = timed && !ui.durationsOnly;
-  bool hasBricks = false;
-  for (const NodeReport& n : stats.perNode) hasBricks = hasBricks || !n.bricks.empty();
-
-  legendSwatch(kRenderColour, hasBricks && timeline ? "brick" : "render", true);
-  if (hasBricks && timeline) legendSwatch(kRenderStepColour, "render step", false);
-  legendSwatch(kWaitColour, "wait", false);
-  legendSwatch(kCompositeColour, "composite", false);
-  if (timeline) legendSwatch(kNotStartedColour, "not started", false, true);
-  helpMarker(frame, timeline);
-  if (timed) {
-    sameLineIfFits(labelledWidth(ImGui::GetFrameHeight(), "durations only"));
-    ImGui::Checkbox("durations only", &ui.durationsOnly);
-  }
-  if (!timeline) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextDisabled(timed ? "Per-node durations laid end to end, not a timeline."
-                              : "This frame's reports carry no start times: durations laid end to end, not a timeline.");
-    ImGui::PopTextWrapPos();
-  }
+  Chart chart;
+  chart.timeline = timed && !ui.durationsOnly;
+  for (const NodeReport& n : stats.perNode) chart.hasBricks = chart.hasBricks || !n.bricks.empty();
+  drawHeader(frame, ui, timed, chart);
 
   const int nodes = int(stats.perNode.size());
   const float lineH = ImGui::GetTextLineHeight();
@@ -176,60 +216,34 @@ void drawTimelineTab(const FrameSnapshot& frame, TimelineUi& ui) {
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float childH = std::max(avail.y - axisH - ImGui::GetStyle().ItemSpacing.y, 2 * kMinRow);
   const TimelineRows rows = timelineRows(nodes, childH, kMinRow, kMaxRow, lineH + 2);
-  const bool scrolls = rows.total > childH;
   const float labelW = ImGui::CalcTextSize(std::to_string(std::max(nodes - 1, 0)).c_str()).x + 6;
-  const float barW = std::max(avail.x - labelW - 4 - (scrolls ? ImGui::GetStyle().ScrollbarSize : 0.0f), 20.0f);
-  const double span = timelineSpan(stats, !timeline);
-  const double scale = double(barW) / span;
+  const float scrollbar = rows.total > childH ? ImGui::GetStyle().ScrollbarSize : 0.0f;
+  const float barW = std::max(avail.x - labelW - 4 - scrollbar, 20.0f);
+  const double span = timelineSpan(stats, !chart.timeline);
   const double step = tickStep(span, barW, kMinTickPixels);
+  chart.scale = double(barW) / span;
 
   ImGui::BeginChild("timeline", ImVec2(0, childH), false);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float x0 = origin.x + labelW;
-  auto xOf = [&](double t) { return x0 + float(t * scale); };
+  chart.x0 = origin.x + labelW;
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  const float scroll = ImGui::GetScrollY();
-  const auto [first, last] = visibleRows(rows, nodes, scroll, ImGui::GetWindowHeight());
-  const float top = origin.y + scroll, bottom = top + ImGui::GetWindowHeight();
+  const float top = origin.y + ImGui::GetScrollY(), bottom = top + ImGui::GetWindowHeight();
   for (double t = step; t <= span * (1 + 1e-9); t += step)
-    draw->AddLine(ImVec2(xOf(t), top), ImVec2(xOf(t), bottom), kGridColour);
+    draw->AddLine(ImVec2(chart.xOf(t), top), ImVec2(chart.xOf(t), bottom), kGridColour);
   const ImVec2 mouse = ImGui::GetIO().MousePos;
-  const bool hovered = ImGui::IsWindowHovered();
-  for (int r = first; r < last; ++r) {
-    const NodeReport& n = stats.perNode[std::size_t(r)];
+  const auto [first, last] = visibleRows(rows, nodes, ImGui::GetScrollY(), ImGui::GetWindowHeight());
+  for (int r = first; r < last; ++r) {  // only the rows in view: 4096 rows scroll
     const float y0 = origin.y + float(r) * rows.height, y1 = std::max(y0 + rows.height - rows.gap, y0 + 1);
     if (r % rows.labelEvery == 0) {
       const std::string label = std::to_string(r);
       const float ty = std::max(y0 + 0.5f * (rows.height - lineH), top);
-      draw->AddText(ImVec2(x0 - 4 - ImGui::CalcTextSize(label.c_str()).x, ty), nodeColour(r), label.c_str());
+      draw->AddText(ImVec2(chart.x0 - 4 - ImGui::CalcTextSize(label.c_str()).x, ty), nodeColour(r), label.c_str());
     }
-    const std::vector<TimelineBar> bars = timelineBars(n, !timeline);
-    for (const TimelineBar& b : bars) {
-      const float a = xOf(b.start), e = std::max(xOf(b.end), a + 1);
-      if (b.kind == Kind::NotStarted) {
-        const float mid = std::floor(0.5f * (y0 + y1));
-        draw->AddLine(ImVec2(a, mid), ImVec2(e, mid), kNotStartedColour);
-      } else {
-        draw->AddRectFilled(ImVec2(a, y0), ImVec2(e, y1), colourOf(b, hasBricks));
-      }
-    }
-    // Phase boundaries: one phase's wait would otherwise run into the next one's.
-    if (rows.height >= 6)
-      for (const TimelineBar& b : bars)
-        if (b.phase >= 0 && (b.kind == Kind::Wait || n.phases[std::size_t(b.phase)].waitSeconds <= 0))
-          draw->AddLine(ImVec2(xOf(b.start), y0), ImVec2(xOf(b.start), y1), IM_COL32(0, 0, 0, 170));
-    if (hovered && mouse.y >= y0 && mouse.y < y0 + rows.height && mouse.x >= x0 - 2) {
-      const int at = barAt(bars, (mouse.x - x0) / scale, 2.0 / scale);
-      if (at >= 0) {
-        const TimelineBar& b = bars[std::size_t(at)];
-        draw->AddRect(ImVec2(xOf(b.start) - 1, y0 - 1), ImVec2(std::max(xOf(b.end), xOf(b.start) + 1) + 1, y1 + 1),
-                      IM_COL32(255, 255, 255, 230));
-        barTooltip(n, b, timeline);
-      }
-    }
+    const bool hovered = ImGui::IsWindowHovered() && mouse.y >= y0 && mouse.y < y0 + rows.height && mouse.x >= chart.x0 - 2;
+    drawRow(draw, chart, stats.perNode[std::size_t(r)], y0, y1, hovered);
   }
-  if (timeline)  // the frame's end on the host: after the last tile arrived and was assembled
-    draw->AddLine(ImVec2(xOf(stats.wallSeconds), top), ImVec2(xOf(stats.wallSeconds), bottom),
+  if (chart.timeline)  // the frame's end on the host: after the last tile arrived and was assembled
+    draw->AddLine(ImVec2(chart.xOf(stats.wallSeconds), top), ImVec2(chart.xOf(stats.wallSeconds), bottom),
                   IM_COL32(255, 255, 255, 140));
   ImGui::Dummy(ImVec2(labelW + barW, rows.total));
   ImGui::EndChild();
@@ -237,7 +251,7 @@ void drawTimelineTab(const FrameSnapshot& frame, TimelineUi& ui) {
   const ImVec2 axisAt = ImGui::GetCursorScreenPos();
   drawAxis(ImGui::GetWindowDrawList(), axisAt.x + labelW, barW, axisAt.y + 2, span, step);
   char caption[96];
-  if (timeline)
+  if (chart.timeline)
     std::snprintf(caption, sizeof caption, "ms since frame start (wall %.2f ms)", stats.wallSeconds * 1e3);
   else
     std::snprintf(caption, sizeof caption, "ms, durations end to end (longest %.2f ms)", span * 1e3);
