@@ -37,9 +37,11 @@ nlohmann::json reportToJson(const NodeReport& n) {
     phases.push_back({{"label", p.label}, {"partner", p.partner},
                       {"region", {p.region.x, p.region.y, p.region.w, p.region.h}},
                       {"compute_s", p.computeSeconds}, {"wait_s", p.waitSeconds}, {"pixels", p.pixels},
-                      {"bytes_sent", p.bytesSent}, {"bytes_received", p.bytesReceived}});
+                      {"bytes_sent", p.bytesSent}, {"bytes_received", p.bytesReceived},
+                      {"start_s", p.start}, {"end_s", p.end}});
   return {{"rank", n.rank}, {"render_s", n.renderSeconds}, {"rays", n.rays}, {"samples", n.samples},
-          {"private_bytes", n.privateBytes}, {"phases", std::move(phases)}};
+          {"private_bytes", n.privateBytes}, {"timed", n.timed}, {"render_start_s", n.renderStart},
+          {"render_end_s", n.renderEnd}, {"phases", std::move(phases)}};
 }
 
 NodeReport reportFromJson(const std::string& text, int node) {
@@ -51,6 +53,9 @@ NodeReport reportFromJson(const std::string& text, int node) {
     n.rays = j.at("rays").get<std::uint64_t>();
     n.samples = j.at("samples").get<std::uint64_t>();
     n.privateBytes = j.at("private_bytes").get<std::uint64_t>();
+    n.timed = j.at("timed").get<bool>();
+    n.renderStart = j.at("render_start_s").get<double>();
+    n.renderEnd = j.at("render_end_s").get<double>();
     for (const auto& p : j.at("phases")) {
       PhaseStats s;
       s.label = p.at("label").get<std::string>();
@@ -62,6 +67,8 @@ NodeReport reportFromJson(const std::string& text, int node) {
       s.pixels = p.at("pixels").get<std::int64_t>();
       s.bytesSent = p.at("bytes_sent").get<std::uint64_t>();
       s.bytesReceived = p.at("bytes_received").get<std::uint64_t>();
+      s.start = p.at("start_s").get<double>();
+      s.end = p.at("end_s").get<double>();
       n.phases.push_back(std::move(s));
     }
     return n;
@@ -150,7 +157,11 @@ void runNode(MpiNetwork& net, MpiRankFrame& frame, int local) {
   ready.header = {std::int64_t(frame.loadSeconds[std::size_t(local)] * 1e9), std::int64_t(frame.mapSeconds * 1e9)};
   comm.send(Communicator::kHost, kReadyTag, std::move(ready));
   comm.receive(Communicator::kHost, kGoTag);
-  const NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, frame.plan, nullptr);
+  // Ranks' clocks are not one clock: each node's times count from its own arrival of "start",
+  // which trails the host's start by one message.
+  const double started = nowSeconds();
+  NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, frame.plan, nullptr);
+  report.rebaseTimes(started);
   Message out;
   out.text = reportToJson(report).dump();
   comm.send(Communicator::kHost, kReportTag, std::move(out));
