@@ -17,7 +17,7 @@ struct TimelineBar {
   double start = 0, end = 0;  //!< seconds since the frame's start (durations only: since 0)
 };
 
-//! True when every node's report carries start and end times (not for MPI frames).
+//! True when every node's report carries start and end times (a stats record may lack them).
 bool hasTimeline(const FrameStats& stats);
 
 //! One node's bars in drawing order. Timed: not started until its task ran, the render interval
