@@ -54,6 +54,32 @@ TEST_CASE("the cost field counts visible blocks at full cost and empty ones at a
   CHECK(CostField::uniform({33, 17, 9}).cost(all) == doctest::Approx(32.0 * 16 * 8));
 }
 
+TEST_CASE("the cost field estimated in shares of block layers adds up to the whole estimate (MPI ranks)") {
+  auto volume = openDataset("vessels:40x36x70");
+  const glm::ivec3 dims = volume->info().dims;
+  const TransferTable table(loadTransferFunction("vessels"), 1.0f);
+  const glm::vec2 range(volume->info().minValue, volume->info().maxValue);
+  const CostField whole = CostField::estimate(*volume, table, range);
+  const int layers = CostField::blockLayers(dims);
+  REQUIRE(layers == 9);  // 69 cells in blocks of 8
+  for (const int ranks : {1, 2, 4, 13}) {
+    CAPTURE(ranks);
+    std::vector<float> sum(whole.blockCosts().size(), 0.0f);
+    for (int r = 0; r < ranks; ++r) {
+      const CostField share = CostField::estimateLayers(*volume, table, range, layers * r / ranks, layers * (r + 1) / ranks);
+      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += share.blockCosts()[i];
+    }
+    CHECK(sum == whole.blockCosts());
+    const CostField merged = CostField::fromBlockCosts(dims, sum);
+    const VoxelBox box{glm::ivec3(3, 5, 7), glm::ivec3(30, 33, 60)};
+    CHECK(merged.cost(box) == whole.cost(box));
+  }
+  // The field is not uniform, so a share that left layers out would be caught above.
+  CHECK(whole.visibleFraction() > 0.0);
+  CHECK(whole.visibleFraction() < 1.0);
+  CHECK_THROWS_AS(CostField::fromBlockCosts(dims, std::vector<float>(3, 1.0f)), Error);
+}
+
 TEST_CASE("cost-aware planes balance the estimated work where halving space does not (vessels, phantom)") {
   for (const std::string spec : {"vessels:128", "phantom:128"}) {
     CAPTURE(spec);

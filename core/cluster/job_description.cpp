@@ -104,6 +104,23 @@ std::string compositingText(const ClusterOptions& o) {
   return text;
 }
 
+std::string balanceText(const ClusterOptions& o) {
+  if (o.balance != "cost") return o.balance;
+  return "cost, transfer function " + transferText(o.balanceTransfer) + ", range " + exact(o.balanceRange.x) + " " +
+         exact(o.balanceRange.y);
+}
+
+std::string speedsText(const std::vector<double>& speeds) {
+  if (speeds.empty()) return "all 1";
+  std::string text;
+  for (double v : speeds) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%.17g", v);  // doubles: 17 digits read back exactly
+    text.append(text.empty() ? "" : " ").append(number);
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string JobDescription::serialize() const {
@@ -155,6 +172,8 @@ JobDescription describeJob(const VolumeSource& source, const FrameRequest& reque
       {"render settings", settingsText(request.settings)},
       {"compositing", compositingText(options)},
       {"partition", toString(options.partition) + ", slab axis " + std::to_string(options.slabAxis)},
+      {"load balance", balanceText(options)},
+      {"node speeds", speedsText(options.speeds)},
       {"voxel storage", voxelChoiceName(options.voxels)},
       {"nodes per rank", std::to_string(nodesPerRank)},
   };

@@ -122,8 +122,7 @@ std::string jobDisagreement(const JobDescription& mine, int nodesPerRank) {
   return "";
 }
 
-//! Collective: the whole volume's cell summary from every rank's bricks, merged in place (min of
-//! minima, max of maxima; fine codes min of lo, max of hi). MPI counts are ints: sent in chunks.
+//! Collective: MPI_Allreduce in place of `count` elements; MPI counts are ints, so in chunks.
 template <typename T>
 void allReduceInChunks(T* data, std::size_t count, MPI_Datatype type, MPI_Op op) {
   constexpr std::size_t kChunk = std::size_t(1) << 28;
@@ -131,6 +130,8 @@ void allReduceInChunks(T* data, std::size_t count, MPI_Datatype type, MPI_Op op)
     MPI_Allreduce(MPI_IN_PLACE, data + at, int(std::min(kChunk, count - at)), type, op, MPI_COMM_WORLD);
 }
 
+//! Collective: the whole volume's cell summary from every rank's bricks, merged (min of minima,
+//! max of maxima; fine codes min of lo, max of hi).
 CellRangeGrid mergedCellSummary(const glm::ivec3& dims, const std::vector<NodeState>& states) {
   std::vector<const Brick*> bricks;
   for (const NodeState& s : states) bricks.push_back(&s.brick);
@@ -148,6 +149,29 @@ CellRangeGrid mergedCellSummary(const glm::ivec3& dims, const std::vector<NodeSt
   allReduceInChunks(codeHighs.data(), codeHighs.size(), MPI_UNSIGNED_CHAR, MPI_MAX);
   for (std::size_t i = 0; i < grid.fine.size(); ++i) grid.fine[i] = CellRangeGrid::FineCodes{codeLows[i], codeHighs[i]};
   return grid;
+}
+
+//! Collective: --balance cost's work estimate, each rank classifying its share of the block layers
+//! (reading only those voxels), summed into the whole field on every rank.
+std::shared_ptr<const CostField> distributedCostField(const VolumeSource& source, const ClusterOptions& options,
+                                                      int rank, int ranks) {
+  const glm::ivec3 dims = source.info().dims;
+  const int layers = CostField::blockLayers(dims);
+  const int first = int(std::int64_t(layers) * rank / ranks), end = int(std::int64_t(layers) * (rank + 1) / ranks);
+  const glm::vec2 range = options.balanceRange.y > options.balanceRange.x
+                              ? options.balanceRange
+                              : glm::vec2(source.info().minValue, source.info().maxValue);
+  std::string problem;
+  std::vector<float> costs;
+  try {
+    costs = CostField::estimateLayers(source, TransferTable(options.balanceTransfer, 1.0f), range, first, end)
+                .blockCosts();
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  agreeOrThrow(problem);
+  allReduceInChunks(costs.data(), costs.size(), MPI_FLOAT, MPI_SUM);  // each block from one rank, others 0
+  return std::make_shared<CostField>(CostField::fromBlockCosts(dims, std::move(costs)));
 }
 
 void runNode(MpiNetwork& net, MpiRankFrame& frame, int local) {
@@ -203,13 +227,15 @@ void runHost(MpiNetwork& net, const MpiRankFrame& frame, MpiFrameOutcome& outcom
   s.gatherSeconds = end - gatherStart;
   // Every rank reads its bricks at once (parallel I/O): the slowest node's load is the figure.
   s.distributeSeconds = *std::max_element(outcome.nodeLoadSeconds.begin(), outcome.nodeLoadSeconds.end());
+  if (!frame.options.speeds.empty())  // modelled times divide each node's work by its speed
+    for (NodeReport& n : reports) n.speed = frame.options.speeds[std::size_t(n.rank)];
   s.perNode = std::move(reports);
 }
 
 }  // namespace
 
 MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
-                           int ranks, int nodesPerRank)
+                           int ranks, int nodesPerRank, std::shared_ptr<const CostField> cost)
     : source(source),
       request(request),
       options(options),
@@ -218,7 +244,7 @@ MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& reque
       // The partition in the strategy's group shape, exactly as the in-process cluster builds it.
       strategy(createStrategy(options.strategy, options.composite)),
       tree(KdTree::build(source.info().dims, ranks * nodesPerRank, options.partition, options.slabAxis,
-                         strategy->treeShape(ranks * nodesPerRank))),
+                         strategy->treeShape(ranks * nodesPerRank), PartitionBalance{std::move(cost), options.speeds})),
       plan(request, tree, source.info().spacing, resolveValueRange(request.settings, source.info()), *strategy),
       storage(VoxelStorage::forVolume(source.info(), options.voxels)),
       states(std::size_t(nodesPerRank)),
@@ -229,15 +255,7 @@ std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const
   int ranks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   const int rank = worldRank();
-  std::unique_ptr<MpiRankFrame> frame;
   std::string problem;
-  try {
-    frame = std::make_unique<MpiRankFrame>(source, request, options, ranks, nodesPerRank);
-  } catch (const std::exception& e) {
-    problem = e.what();
-  }
-  agreeOrThrow(problem);
-
   // No brick is read until every rank describes the same job: a rank with another file or other
   // options would otherwise render its share of a different picture.
   JobDescription job;
@@ -248,6 +266,17 @@ std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const
   }
   agreeOrThrow(problem);
   agreeOrThrow(jobDisagreement(job, nodesPerRank));
+
+  std::shared_ptr<const CostField> cost;
+  if (options.balance == "cost") cost = distributedCostField(source, options, rank, ranks);
+
+  std::unique_ptr<MpiRankFrame> frame;
+  try {
+    frame = std::make_unique<MpiRankFrame>(source, request, options, ranks, nodesPerRank, std::move(cost));
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  agreeOrThrow(problem);
 
   try {
     frame->arena.execute([&] {

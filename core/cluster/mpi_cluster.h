@@ -19,6 +19,7 @@
 
 #include "core/cluster/virtual_cluster.h"
 #include "core/comm/mpi_network.h"
+#include "core/partition/cost_field.h"
 #include "core/render/occlusion_grid.h"
 #include "core/render/occlusion_map.h"
 
@@ -36,8 +37,9 @@ inline constexpr int kReportTag = 14;
 //! summary (merged from every rank's bricks) and this frame's map. Not copyable: the plan refers
 //! to the request, the strategy and the map.
 struct MpiRankFrame {
+  //! `cost`: the work estimate for --balance cost (null: planes halve space).
   MpiRankFrame(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
-               int ranks, int nodesPerRank);
+               int ranks, int nodesPerRank, std::shared_ptr<const CostField> cost);
   MpiRankFrame(const MpiRankFrame&) = delete;
   MpiRankFrame& operator=(const MpiRankFrame&) = delete;
 
@@ -59,7 +61,9 @@ struct MpiRankFrame {
 
 //! Collective over MPI_COMM_WORLD, on the main thread while no MpiNetwork runs; every rank calls
 //! it with its own volume and the request and options of its own command line. The ranks check
-//! that they describe the same job (JobDescription), each loads its nodes' bricks, and with culling
+//! that they describe the same job (JobDescription); with --balance cost each estimates the work
+//! of a share of the volume's block layers and the shares are summed (MPI_Allreduce) into the
+//! field the virtual cluster estimates whole; each loads its nodes' bricks, and with culling
 //! they merge the cell summary (MPI_Allreduce) and each computes the frame's occlusion map, as the
 //! virtual cluster does. A problem on any rank throws kdswap::Error on every rank with the same
 //! one-line message (naming the rank), so all stop together.

@@ -21,11 +21,26 @@ CostField CostField::uniform(const glm::ivec3& dims) {
 }
 
 CostField CostField::estimate(const VolumeSource& source, const TransferTable& table, glm::vec2 valueRange) {
+  return estimateLayers(source, table, valueRange, 0, blockLayers(source.info().dims));
+}
+
+CostField CostField::fromBlockCosts(const glm::ivec3& dims, std::vector<float> costs) {
+  CostField f = uniform(dims);
+  if (costs.size() != f.perCell_.size())
+    throw Error("cost field: " + std::to_string(costs.size()) + " block costs for " + std::to_string(f.perCell_.size()) +
+                " blocks");
+  f.perCell_ = std::move(costs);
+  return f;
+}
+
+CostField CostField::estimateLayers(const VolumeSource& source, const TransferTable& table, glm::vec2 valueRange,
+                                    int firstLayer, int endLayer) {
   const glm::ivec3 dims = source.info().dims;
   CostField f = uniform(dims);
+  std::fill(f.perCell_.begin(), f.perCell_.end(), 0.0f);
   const float scale = valueRange.y > valueRange.x ? 1.0f / (valueRange.y - valueRange.x) : 0.0f;
   std::vector<float> layer;
-  for (int bz = 0; bz < f.blocks_.z; ++bz) {
+  for (int bz = std::max(firstLayer, 0); bz < std::min(endLayer, f.blocks_.z); ++bz) {
     // A block of cells spans kBlock + 1 voxel layers (its cells' corners).
     const int z0 = bz * kBlock, z1 = std::min(z0 + kBlock + 1, dims.z);
     const VoxelBox box{glm::ivec3(0, 0, z0), glm::ivec3(dims.x, dims.y, z1)};

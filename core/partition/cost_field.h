@@ -8,6 +8,7 @@
 // modelled, so the estimate suits translucent and sparse data best.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -28,6 +29,18 @@ class CostField {
   //! Reads the volume block layer by block layer (never all of it at once) and classifies every
   //! block with `table` over the normalised `valueRange`.
   static CostField estimate(const VolumeSource& source, const TransferTable& table, glm::vec2 valueRange);
+  //! estimate() of the block layers [firstLayer, endLayer) along z only; the others cost 0, so
+  //! fields of processes that estimated different layers add up (blockCosts) to estimate()'s:
+  //! MPI ranks each read a share of the volume.
+  static CostField estimateLayers(const VolumeSource& source, const TransferTable& table, glm::vec2 valueRange,
+                                  int firstLayer, int endLayer);
+  //! Block layers along z (cells in blocks of kBlock^3).
+  static int blockLayers(const glm::ivec3& dims) { return (std::max(dims.z - 1, 0) + (kBlock - 1)) / kBlock; }
+  //! Per block, the cost of each of its cells (x fastest); fromBlockCosts gives the field back.
+  const std::vector<float>& blockCosts() const { return perCell_; }
+  //! The field of a volume of `dims` with these block costs (e.g. blockCosts() summed over ranks).
+  //! Throws kdswap::Error when their number does not fit `dims`.
+  static CostField fromBlockCosts(const glm::ivec3& dims, std::vector<float> costs);
   //! Every cell costs one unit: planes placed by this field halve space.
   static CostField uniform(const glm::ivec3& dims);
 
