@@ -38,6 +38,7 @@ nlohmann::json reportToJson(const NodeReport& n) {
                       {"region", {p.region.x, p.region.y, p.region.w, p.region.h}},
                       {"compute_s", p.computeSeconds}, {"wait_s", p.waitSeconds}, {"pixels", p.pixels},
                       {"bytes_sent", p.bytesSent}, {"bytes_received", p.bytesReceived},
+                      {"messages_sent", p.messagesSent}, {"messages_received", p.messagesReceived},
                       {"start_s", p.start}, {"end_s", p.end}});
   return {{"rank", n.rank}, {"render_s", n.renderSeconds}, {"rays", n.rays}, {"samples", n.samples},
           {"private_bytes", n.privateBytes}, {"timed", n.timed}, {"render_start_s", n.renderStart},
@@ -67,6 +68,8 @@ NodeReport reportFromJson(const std::string& text, int node) {
       s.pixels = p.at("pixels").get<std::int64_t>();
       s.bytesSent = p.at("bytes_sent").get<std::uint64_t>();
       s.bytesReceived = p.at("bytes_received").get<std::uint64_t>();
+      s.messagesSent = p.at("messages_sent").get<std::uint64_t>();
+      s.messagesReceived = p.at("messages_received").get<std::uint64_t>();
       s.start = p.at("start_s").get<double>();
       s.end = p.at("end_s").get<double>();
       n.phases.push_back(std::move(s));
@@ -221,6 +224,7 @@ void runHost(MpiNetwork& net, const MpiRankFrame& frame, MpiFrameOutcome& outcom
   s.height = frame.request.height;
   s.strategy = std::string(frame.strategy->name());
   s.partition = toString(frame.options.partition);
+  s.network = frame.options.network;  // a model of a machine's network, for the modelled time
   // The occlusion map belongs to the frame (it depends on the view), as in the virtual cluster,
   // whose wall time includes it; here every rank computes it before the frame starts.
   s.wallSeconds = end - start + mapSeconds;
