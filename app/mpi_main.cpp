@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/scene_options.h"
+#include "core/bench/statistics.h"
 #include "core/cluster/mpi_cluster.h"
 #include "core/comm/mpi_agreement.h"
 #include "core/image/image_io.h"
@@ -36,7 +37,24 @@ struct MpiRenderOptions {
   std::string stats;
   bool verify = false;
   bool quiet = false;
+  int frames = 1;          //!< measured frames; above 1, after one warm-up frame
+  float orbitDeg = 1.0f;   //!< the view's turn per frame (azimuth), with frames > 1
+  bool orbitGiven = false;
 };
+
+//! Rank 0: the measured frames' figures, one per frame, and their medians ("frames" in the stats).
+nlohmann::json framesJson(const std::vector<FrameStats>& measured, float orbitDeg) {
+  std::vector<double> wall, render, composite, modelled;
+  for (const FrameStats& f : measured) {
+    wall.push_back(f.wallSeconds), render.push_back(f.renderMax()), composite.push_back(f.compositeMax());
+    modelled.push_back(f.modelledParallelSeconds());
+  }
+  return {{"count", measured.size()}, {"warm_up", 1}, {"orbit_deg", orbitDeg},
+          {"wall_s", wall}, {"render_s_max", render}, {"composite_s_max", composite},
+          {"modelled_parallel_s", modelled},
+          {"median", {{"wall_s", median(wall)}, {"render_s_max", median(render)},
+                      {"composite_s_max", median(composite)}, {"modelled_parallel_s", median(modelled)}}}};
+}
 
 constexpr float kVerifyTolerance = 1e-5f;
 
@@ -67,18 +85,31 @@ void checkRankOptions(MpiRenderOptions& o, int ranks, bool nodesGiven) {
     throw Error("--nodes " + std::to_string(o.scene.nodes) + ": must equal MPI ranks (" + std::to_string(ranks) +
                 ") x --nodes-per-rank (" + std::to_string(o.nodesPerRank) + "); or leave it out");
   if (!(o.stallSeconds > 0)) throw Error("--stall-seconds must be > 0");
+  if (o.orbitGiven && o.frames < 2) throw Error("--orbit turns the view between frames: give --frames 2 or more");
   o.scene.nodes = ranks * o.nodesPerRank;
 }
 
 //! Rank 0, after a successful frame: image, table, optional verification and stats. Returns the
 //! exit code (1: verification failed).
-int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOutcome& outcome) {
+int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOutcome& outcome,
+                 const std::vector<FrameStats>& measured) {
   const FrameResult& frame = outcome.result;
   writeImage(o.out, frame.image);
-  if (!o.quiet)
-    std::printf("%s  over %d MPI rank(s) x %d node(s) per rank\nwrote %s\n", formatFrameTable(frame.stats).c_str(),
-                outcome.ranks, outcome.nodesPerRank, o.out.c_str());
   nlohmann::json stats = outcome.statsJson();
+  if (measured.size() > 1) stats["frames"] = framesJson(measured, o.orbitDeg);
+  if (!o.quiet) {
+    std::printf("%s  over %d MPI rank(s) x %d node(s) per rank\n", formatFrameTable(frame.stats).c_str(),
+                outcome.ranks, outcome.nodesPerRank);
+    if (measured.size() > 1) {
+      const nlohmann::json& m = stats["frames"]["median"];
+      std::printf("medians of %zu frames after a warm-up (view turning %g deg a frame; the table is the last "
+                  "frame's):\n  wall %.2f ms, render max %.2f ms, composite max %.2f ms, modelled parallel %.2f ms\n",
+                  measured.size(), double(o.orbitDeg), m["wall_s"].get<double>() * 1e3,
+                  m["render_s_max"].get<double>() * 1e3, m["composite_s_max"].get<double>() * 1e3,
+                  m["modelled_parallel_s"].get<double>() * 1e3);
+    }
+    std::printf("wrote %s\n", o.out.c_str());
+  }
   bool verified = true;
   if (o.verify) {
     // The reference reads the whole volume, on rank 0 only.
@@ -121,13 +152,36 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   if (!first.empty()) throw Error(first);
   const std::unique_ptr<MpiRankFrame> frame = prepareRankFrame(*scene.source, scene.request, scene.cluster, o.nodesPerRank);
 
-  MpiNetwork network(o.nodesPerRank, o.stallSeconds);
-  const MpiFrameOutcome outcome = renderFrameOverMpi(network, *frame);
+  // With --frames N > 1: a warm-up frame (caches, first-touch pages, pooled buffers), then N
+  // measured ones, the first at the requested view, each turned --orbit degrees further. The bricks
+  // stay loaded; each frame runs over its own network.
+  const int total = o.frames > 1 ? o.frames + 1 : 1;
+  const View firstView = scene.request.view;
+  std::vector<FrameStats> measured;
+  MpiFrameOutcome outcome;
   int code = 0;
-  if (rank == 0) {
+  for (int f = 0; f < total && code == 0; ++f) {
+    View view = firstView;
+    view.azimuthDeg += o.orbitDeg * float(std::max(f - 1, 0));
+    if (f > 0) frame->setView(view);
+    MpiNetwork network(o.nodesPerRank, o.stallSeconds);
+    outcome = renderFrameOverMpi(network, *frame);
+    // Rank 0 decides: a failure anywhere reaches the host, which names it.
+    int ok = outcome.ok ? 1 : 0;
+    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!ok) {
+      if (rank == 0) std::fprintf(stderr, "kdswap-mpi: %s\n", outcome.error.c_str());
+      code = 2;
+    } else if (rank == 0 && (total == 1 || f > 0)) {
+      measured.push_back(outcome.result.stats);
+      if (total > 1 && !o.quiet)
+        std::printf("frame %d/%d: wall %.2f ms\n", f, total - 1, outcome.result.stats.wallSeconds * 1e3);
+    }
+    scene.request.view = view;  // --verify checks the last frame
+  }
+  if (code == 0 && rank == 0) {
     try {
-      if (!outcome.ok) throw Error(outcome.error);
-      code = writeResults(o, scene, outcome);
+      code = writeResults(o, scene, outcome, measured);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
       code = 2;
@@ -165,6 +219,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cmd->add_option("--stall-seconds", o.stallSeconds, "Abort when nodes wait with no traffic this long")
       ->capture_default_str();
+  cmd->add_option("--frames", o.frames,
+                  "Render this many measured frames (1..100000) after a warm-up frame, the view turning --orbit "
+                  "degrees a frame; prints and writes (--stats \"frames\") their medians; the image is the last")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--orbit", o.orbitDeg, "With --frames: degrees the view turns per frame (azimuth), -360..360")
+      ->capture_default_str()
+      ->check(CLI::Range(-360.0f, 360.0f));
   cmd->add_option("--out,-o", o.out, "Output image (.png, .exr, .tif), written by rank 0")->capture_default_str();
   cmd->add_option("--stats", o.stats, "Write the frame's figures as JSON (kdswap render keys + per_rank)");
   cmd->add_flag("--verify", o.verify, "Also render the single-node reference on rank 0; exit 1 if they differ");
@@ -202,6 +264,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
+    o.orbitGiven = cmd->get_option("--orbit")->count() > 0;
     return kdswap::run(o, *session, cmd->get_option("--nodes")->count() > 0);
   } catch (const std::exception& e) {
     // Problems before the frame are agreed among the ranks (the same message on every rank), and

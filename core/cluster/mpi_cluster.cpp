@@ -187,7 +187,7 @@ void runNode(MpiNetwork& net, MpiRankFrame& frame, int local) {
   // Ranks' clocks are not one clock: each node's times count from its own arrival of "start",
   // which trails the host's start by one message.
   const double started = nowSeconds();
-  NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, frame.plan, nullptr);
+  NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, *frame.plan, nullptr);
   report.rebaseTimes(started);
   Message out;
   out.text = reportToJson(report).dump();
@@ -215,7 +215,7 @@ void runHost(MpiNetwork& net, const MpiRankFrame& frame, MpiFrameOutcome& outcom
   }
   const double gatherStart = nowSeconds();
   FrameResult& result = outcome.result;
-  result.image = assembleTiles(tiles, frame.plan.frame(), &result.tiles);
+  result.image = assembleTiles(tiles, frame.plan->frame(), &result.tiles);
   const double end = nowSeconds();
 
   FrameStats& s = result.stats;
@@ -249,10 +249,28 @@ MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& reque
       strategy(createStrategy(options.strategy, options.composite)),
       tree(KdTree::build(source.info().dims, ranks * nodesPerRank, options.partition, options.slabAxis,
                          strategy->treeShape(ranks * nodesPerRank), PartitionBalance{std::move(cost), options.speeds})),
-      plan(request, tree, source.info().spacing, resolveValueRange(request.settings, source.info()), *strategy),
       storage(VoxelStorage::forVolume(source.info(), options.voxels)),
       states(std::size_t(nodesPerRank)),
-      loadSeconds(std::size_t(nodesPerRank), 0.0) {}
+      loadSeconds(std::size_t(nodesPerRank), 0.0) {
+  plan.emplace(this->request, tree, source.info().spacing, resolveValueRange(request.settings, source.info()),
+               *strategy);
+}
+
+void MpiRankFrame::setView(const View& view) {
+  const VolumeInfo& info = source.info();
+  request.view = view;
+  plan.emplace(request, tree, info.spacing, resolveValueRange(request.settings, info), *strategy);
+  occlusionMap.reset();
+  mapSeconds = 0;
+  if (!occlusionGrid) return;
+  const double start = nowSeconds();
+  arena.execute([&] {
+    occlusionMap.emplace(*occlusionGrid, plan->camera, glm::vec3(info.dims - 1) * info.spacing, info.spacing,
+                         request.settings);
+  });
+  plan->occlusion = &*occlusionMap;
+  mapSeconds = nowSeconds() - start;
+}
 
 std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const FrameRequest& request,
                                                const ClusterOptions& options, int nodesPerRank) {
@@ -298,20 +316,14 @@ std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const
   // Occlusion culling, as VirtualCluster::renderFrame does it: the same summary (here merged from
   // the ranks' bricks), the same grid and the same map, so frames equal the virtual cluster's.
   if (request.settings.cullOccluded && ranks * nodesPerRank > 1) {
-    const double start = nowSeconds();
     frame->arena.execute([&] {
       const CellRangeGrid cells = mergedCellSummary(source.info().dims, frame->states);
-      const glm::vec2 map = normalisingScaleBias(frame->plan.valueRange);
-      frame->occlusionGrid.emplace(cells, frame->plan.table, map.x, map.y, request.settings.earlyTermination);
-      if (frame->occlusionGrid->active()) {
-        const VolumeInfo& info = source.info();
-        frame->occlusionMap.emplace(*frame->occlusionGrid, frame->plan.camera, glm::vec3(info.dims - 1) * info.spacing,
-                                    info.spacing, request.settings);
-        frame->plan.occlusion = &*frame->occlusionMap;
-      }
+      const glm::vec2 map = normalisingScaleBias(frame->plan->valueRange);
+      frame->occlusionGrid.emplace(cells, frame->plan->table, map.x, map.y, request.settings.earlyTermination);
     });
-    frame->mapSeconds = nowSeconds() - start;
+    if (!frame->occlusionGrid->active()) frame->occlusionGrid.reset();
   }
+  frame->setView(request.view);
   return frame;
 }
 

@@ -34,8 +34,9 @@ inline constexpr int kReportTag = 14;
 
 //! One rank's part of a frame, ready to render: the partition and plan every rank computes alike,
 //! this rank's nodes with their bricks loaded, and, with occlusion culling, the whole volume's cell
-//! summary (merged from every rank's bricks) and this frame's map. Not copyable: the plan refers
-//! to the request, the strategy and the map.
+//! summary (merged from every rank's bricks) and the current frame's map. Bricks stay loaded across
+//! frames; setView prepares the next frame. Not copyable: the plan refers to the request, the
+//! strategy and the map.
 struct MpiRankFrame {
   //! `cost`: the work estimate for --balance cost (null: planes halve space).
   MpiRankFrame(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
@@ -43,18 +44,22 @@ struct MpiRankFrame {
   MpiRankFrame(const MpiRankFrame&) = delete;
   MpiRankFrame& operator=(const MpiRankFrame&) = delete;
 
+  //! Local, the same on every rank: the next frame looks from `view` (a new plan, and with culling
+  //! a new occlusion map, timed in mapSeconds).
+  void setView(const View& view);
+
   const VolumeSource& source;
-  const FrameRequest& request;
+  FrameRequest request;             //!< the current frame's (its view changes with setView)
   const ClusterOptions& options;
   int nodesPerRank;
   tbb::task_arena arena;
   std::unique_ptr<Strategy> strategy;
   KdTree tree;
-  FramePlan plan;
+  std::optional<FramePlan> plan;
   VoxelStorage storage;
   std::vector<NodeState> states;    //!< this rank's nodes, firstLocalNode() + i
   std::vector<double> loadSeconds;  //!< each of this rank's nodes: brick read + gradients
-  std::optional<OcclusionGrid> occlusionGrid;
+  std::optional<OcclusionGrid> occlusionGrid;  //!< culling's per-transfer-function grid, when active
   std::optional<OcclusionMap> occlusionMap;
   double mapSeconds = 0;            //!< this rank's occlusion map, computed before the frame starts
 };
