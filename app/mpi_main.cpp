@@ -163,7 +163,16 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   for (int f = 0; f < total && code == 0; ++f) {
     View view = firstView;
     view.azimuthDeg += o.orbitDeg * float(std::max(f - 1, 0));
-    if (f > 0) frame->setView(view);
+    if (f > 0) {
+      std::string viewProblem;  // agreed, as every problem between frames, so no rank waits alone
+      try {
+        frame->setView(view);
+      } catch (const std::exception& e) {
+        viewProblem = e.what();
+      }
+      const std::string agreed = firstProblemOfAnyRank(viewProblem);
+      if (!agreed.empty()) throw Error(agreed);
+    }
     MpiNetwork network(o.nodesPerRank, o.stallSeconds);
     outcome = renderFrameOverMpi(network, *frame);
     // Rank 0 decides: a failure anywhere reaches the host, which names it.

@@ -45,7 +45,8 @@ struct MpiRankFrame {
   MpiRankFrame& operator=(const MpiRankFrame&) = delete;
 
   //! Local, the same on every rank: the next frame looks from `view` (a new plan, and with culling
-  //! a new occlusion map, timed in mapSeconds).
+  //! a new occlusion map, timed in mapSeconds). Every frame computes the map: the virtual cluster's
+  //! rule of resting it after frames where it culled little is not applied here.
   void setView(const View& view);
 
   const VolumeSource& source;
