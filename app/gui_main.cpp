@@ -22,6 +22,12 @@ int main(int argc, char** argv) {
   app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P")->capture_default_str();
   app.add_option("--partition", o.partition, "kd or slab")->capture_default_str();
   app.add_option("--composite", o.composite, "Compositing strategy (binary-swap, ...)")->capture_default_str();
+  app.add_option("--balance", o.balance,
+                 "Plane placement: space (halve space) or cost (balance the work the transfer function makes)")
+      ->capture_default_str();
+  app.add_option("--bricks-per-node", o.bricksPerNode,
+                 "Over-decomposition: each node's brick cut into this many (1..64), handed out on demand")
+      ->capture_default_str();
   app.add_option("--tf", o.tf, "Transfer-function preset or JSON file (default: the data set's preset)");
   app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels")->capture_default_str();
   app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();

@@ -78,6 +78,10 @@ void initState(GuiState& state, const GuiOptions& o) {
   if (std::find(strategies.begin(), strategies.end(), o.composite) == strategies.end())
     createStrategy(o.composite);  // throws, listing the valid names
   state.scene.cluster.strategy = o.composite;
+  if (o.balance != "space" && o.balance != "cost") throw Error("--balance " + o.balance + ": expected space or cost");
+  if (o.bricksPerNode < 1 || o.bricksPerNode > 64)
+    throw Error("--bricks-per-node " + std::to_string(o.bricksPerNode) + ": expected 1..64");
+  state.scene.cluster.bricksPerNode = o.bricksPerNode;
   // Leave a core for the UI thread (and Mesa's rasteriser) so the window stays responsive.
   state.scene.cluster.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
   if (o.nodes < 1 || o.nodes > kMaxNodes) throw Error("--nodes " + std::to_string(o.nodes) + ": expected 1.." + std::to_string(kMaxNodes));
@@ -86,6 +90,7 @@ void initState(GuiState& state, const GuiOptions& o) {
   const std::string preset = o.tf.empty() ? presetFor(o.dataset) : o.tf;
   state.request.transfer = loadTransferFunction(preset.empty() ? "grayscale" : preset);
   state.tfEdited = !o.tf.empty();
+  if (o.balance == "cost") useCostBalance(state.scene.cluster, state.request.transfer);
   state.dataChoices = findDataChoices();
 }
 
@@ -93,7 +98,7 @@ void initState(GuiState& state, const GuiOptions& o) {
 // viewport and transfer function in the middle, the stages grid on the right.
 void drawPanels(GuiState& state, float w, float h) {
   const float left = std::round(w * 0.21f), middle = std::round(w * 0.40f), right = w - left - middle;
-  const float top = std::round(h * 0.48f), view = std::round(h * 0.64f);
+  const float top = std::round(h * 0.53f), view = std::round(h * 0.64f);
   auto place = [](float x, float y, float ww, float hh) {
     ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(ww, hh), ImGuiCond_FirstUseEver);

@@ -67,6 +67,7 @@ struct TimelineUi {
 struct SettingsUi {
   std::string typedData;  //!< the path or spec being typed
   int nodes = 0;          //!< the node count while its slider is dragged
+  int bricksPerNode = 0;  //!< bricks per node while its slider is dragged
 };
 
 struct GuiState {

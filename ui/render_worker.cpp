@@ -11,6 +11,8 @@
 #include <unistd.h>
 #endif
 
+#include <nlohmann/json.hpp>
+
 #include "core/util/clock.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
@@ -27,7 +29,15 @@ constexpr int kStageCellSide = 192;
 bool SceneSpec::sameScene(const SceneSpec& o) const {
   const ClusterOptions &a = cluster, &b = o.cluster;
   return data == o.data && a.nodes == b.nodes && a.partition == b.partition && a.slabAxis == b.slabAxis &&
-         a.strategy == b.strategy && a.threads == b.threads;
+         a.strategy == b.strategy && a.threads == b.threads && a.bricksPerNode == b.bricksPerNode &&
+         a.balance == b.balance &&
+         (a.balance != "cost" || a.balanceTransfer.toJson() == b.balanceTransfer.toJson());
+}
+
+void useCostBalance(ClusterOptions& cluster, const TransferFunction& transfer) {
+  cluster.balance = "cost";
+  cluster.balanceTransfer = transfer;
+  cluster.balanceRange = glm::vec2(0.0f);  // empty: the data's range
 }
 
 void lowerThreadPriority() {

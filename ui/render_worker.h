@@ -29,6 +29,10 @@ struct SceneSpec {
   bool sameScene(const SceneSpec& o) const;
 };
 
+//! --balance cost for `cluster`, its work estimated from `transfer` over the data's range (the
+//! transfer function of the moment: editing it later does not move the planes).
+void useCostBalance(ClusterOptions& cluster, const TransferFunction& transfer);
+
 //! A scene the worker built successfully (immutable once published).
 struct SceneSnapshot {
   SceneSpec spec;

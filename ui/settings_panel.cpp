@@ -135,6 +135,27 @@ void drawClusterSection(GuiState& state) {
       }
     ImGui::EndCombo();
   }
+  // Load balancing (the paper's conclusion): the timeline shows its effect on each node's work.
+  int balance = c.balance == "cost" ? 1 : 0;
+  if (ImGui::Combo(field("load balance").c_str(), &balance, "halve space\0by cost\0")) {
+    if (balance == 1)
+      useCostBalance(c, state.request.transfer);
+    else
+      c.balance = "space";
+    state.requestFrame(false);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("place the k-d planes to halve space (the paper), or to balance the work the transfer "
+                      "function makes (estimated when chosen; choose again after editing it)");
+  int& bricks = state.settings.bricksPerNode;
+  if (!ImGui::IsAnyItemActive()) bricks = c.bricksPerNode;
+  ImGui::SliderInt(field("bricks per node").c_str(), &bricks, 1, 64, "%d", ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("over-decomposition: each node's brick cut into this many, handed out on demand each frame");
+  if (ImGui::IsItemDeactivatedAfterEdit() && bricks != c.bricksPerNode) {
+    c.bricksPerNode = bricks;
+    state.requestFrame(false);
+  }
 }
 
 void drawRenderSection(GuiState& state) {
@@ -184,7 +205,7 @@ void drawSettingsPanel(GuiState& state) {
   // Widgets leave room for the widest label beside them; when that would leave them under 55%
   // of the panel, labels go above the widgets instead.
   float label = 0;
-  for (const char* text : {"data", "nodes", "partition", "compositing", "image size", "step (voxels)",
+  for (const char* text : {"data", "nodes", "partition", "compositing", "load balance", "bricks per node", "image size", "step (voxels)",
                            "early termination", "projection", "up axis", "field of view"})
     label = std::max(label, ImGui::CalcTextSize(text).x);
   const float avail = ImGui::GetContentRegionAvail().x;

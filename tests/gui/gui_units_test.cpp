@@ -44,6 +44,25 @@ std::string errorOf(const std::string& spec) {
 
 }  // namespace
 
+TEST_CASE("gui scene: load balance and bricks per node rebuild the cluster, other edits do not") {
+  SceneSpec a;
+  SceneSpec b = a;
+  CHECK(a.sameScene(b));
+  b.cluster.bricksPerNode = 4;
+  CHECK_FALSE(a.sameScene(b));  // over-decomposition cuts the bricks anew
+  b = a;
+  useCostBalance(b.cluster, loadTransferFunction("phantom"));
+  CHECK(b.cluster.balance == "cost");
+  CHECK_FALSE(a.sameScene(b));  // the planes move
+  SceneSpec c = b;
+  CHECK(b.sameScene(c));
+  useCostBalance(c.cluster, loadTransferFunction("grayscale"));
+  CHECK_FALSE(b.sameScene(c));  // another transfer function, other planes
+  // With halved space the transfer function kept for cost balance does not matter.
+  c.cluster.balance = b.cluster.balance = "space";
+  CHECK(b.sameScene(c));
+}
+
 TEST_CASE("gui histogram: integer values 0..254 get one bin each and no bin is empty") {
   std::vector<float> values;
   for (int v = 0; v <= 254; ++v) values.push_back(float(v));
