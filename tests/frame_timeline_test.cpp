@@ -181,7 +181,7 @@ TEST_CASE("the stats JSON carries the timeline keys beside the existing ones, an
       CHECK(p["end_s"].get<double>() <= j["wall_s"].get<double>() + kClockTolerance);
     }
   }
-  // A report that travelled without times (an MPI frame's) has no timeline keys rather than zeros.
+  // A report without times has no timeline keys rather than zeros.
   for (NodeReport& n : s.perNode) n.timed = false;
   j = s.toJson();
   for (const nlohmann::json& n : j["per_node"]) {

@@ -103,7 +103,7 @@ nlohmann::json FrameStats::toJson() const {
     nj["samples"] = n.samples;
     nj["bytes_sent"] = n.bytesSent();
     nj["private_bytes"] = n.privateBytes;
-    // The timeline keys only where the report carries times: absent, not 0, for MPI frames.
+    // The timeline keys only where the report carries times: absent, not 0, where it does not.
     if (n.timed) {
       nj["render_start_s"] = n.renderStart;
       nj["render_end_s"] = n.renderEnd;

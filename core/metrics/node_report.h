@@ -34,8 +34,9 @@ struct NodeReport {
   //! the task may wait for a core or for a shipped brick.
   double renderStart = 0, renderEnd = 0;
   //! The start and end times are set. In the node program they are absolute nowSeconds(); a
-  //! cluster's FrameStats holds them as seconds since the frame's start (rebaseTimes). Reports
-  //! that travel without them (MPI frames) have it false and every time 0.
+  //! cluster's FrameStats holds them as seconds since the frame's start (rebaseTimes; over MPI
+  //! each node's own arrival of the start message). A report made without them (one read back
+  //! from elsewhere, a test's) has it false and every time 0.
   bool timed = false;
   //! Relative speed of the processor this node models (1 = this machine's core). Modelled times
   //! divide measured work by it; measured figures stay as measured.
