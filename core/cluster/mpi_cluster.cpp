@@ -93,12 +93,6 @@ void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdT
   state.brick = Brick(owned, info.dims, info.spacing, std::move(raw), Brick::Shipping::No, 0, storage);
 }
 
-int worldRank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
-
 //! Collective: throws on every rank when any rank has a problem (see firstProblemOfAnyRank).
 void agreeOrThrow(const std::string& problem) {
   const std::string first = firstProblemOfAnyRank(problem);
@@ -274,9 +268,7 @@ void MpiRankFrame::setView(const View& view) {
 
 std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const FrameRequest& request,
                                                const ClusterOptions& options, int nodesPerRank) {
-  int ranks = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  const int rank = worldRank();
+  const int ranks = worldSize(), rank = worldRank();
   std::string problem;
   // No brick is read until every rank describes the same job: a rank with another file or other
   // options would otherwise render its share of a different picture.

@@ -12,7 +12,6 @@
 #include <mpi.h>
 
 namespace kdswap {
-namespace {
 
 int worldSize() {
   int size = 1;
@@ -25,6 +24,8 @@ int worldRank() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   return rank;
 }
+
+namespace {
 
 //! Texts are one-line messages and job descriptions (~1 KB): cut at 256 KiB, so that a gather from
 //! 4096 ranks stays within MPI's int counts.

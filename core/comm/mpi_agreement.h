@@ -11,6 +11,10 @@
 
 namespace kdswap {
 
+//! This process's rank and the number of ranks in MPI_COMM_WORLD.
+int worldRank();
+int worldSize();
+
 //! Collective. The lowest rank whose `flag` is true, or -1 when no rank's is.
 int firstRankWith(bool flag);
 
