@@ -98,7 +98,8 @@ BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
             rss = r.stats.peakRssBytes;
           }
           p.elapsedSeconds = nowSeconds() - start;
-          p.remainingSeconds = doneWeight > 0 ? p.elapsedSeconds * (totalWeight - doneWeight) / doneWeight : 0.0;
+          // Clamped: the per-frame weights are fractions whose rounded sum can pass the total.
+          p.remainingSeconds = doneWeight > 0 ? std::max(0.0, p.elapsedSeconds * (totalWeight - doneWeight) / doneWeight) : 0.0;
           if (progress) progress(p);
         }
         if (!f.wall.empty()) {
