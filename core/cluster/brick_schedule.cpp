@@ -8,6 +8,13 @@
 
 namespace kdswap {
 
+std::vector<double> firstBrickCosts(const BrickLayout& layout, const CostField* cost, const glm::ivec3& dims) {
+  const CostField uniform = cost ? CostField{} : CostField::uniform(dims);
+  std::vector<double> costs;
+  for (int b = 0; b < layout.bricks(); ++b) costs.push_back((cost ? *cost : uniform).cost(layout.box(b)));
+  return costs;
+}
+
 BrickSchedule scheduleBricks(const BrickLayout& layout, const std::vector<double>& cost,
                              const std::vector<double>& speeds, std::vector<std::set<int>>& held) {
   const int nodes = layout.nodes();

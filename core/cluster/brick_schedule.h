@@ -7,11 +7,13 @@
 // divided by the node's speed.
 #pragma once
 
+#include <cstdint>
 #include <set>
 #include <utility>
 #include <vector>
 
 #include "core/partition/brick_layout.h"
+#include "core/partition/cost_field.h"
 
 namespace kdswap {
 
@@ -24,6 +26,16 @@ struct BrickSchedule {
   std::vector<int> receives;  //!< receives[node]: bricks shipped to it this frame
   double modelledMakespan = 0;  //!< the simulated frame's render time (max over nodes)
 };
+
+//! The estimate of a brick's work for the next frame, from what it took this frame: the samples
+//! plus a cost per ray for setup and empty-space stepping. Counts, not seconds: measured times on a
+//! shared machine vary far more from frame to frame than the work does, and counts are the same on
+//! every MPI rank that plans the next frame.
+inline double brickWork(std::uint64_t samples, std::uint64_t rays) { return double(samples) + 16.0 * double(rays); }
+
+//! The first frame's estimate of each brick's work, before any was measured: the cost field's
+//! (--balance cost), or without one the brick's share of a uniform field.
+std::vector<double> firstBrickCosts(const BrickLayout& layout, const CostField* cost, const glm::ivec3& dims);
 
 //! `cost[b]`: estimated seconds of brick b on a speed-1 node. `speeds`: per node (empty = 1).
 //! `held[n]`: bricks node n holds (its own ones are implied); updated with this frame's shipments.

@@ -175,6 +175,7 @@ JobDescription describeJob(const VolumeSource& source, const FrameRequest& reque
       {"load balance", balanceText(options)},
       {"node speeds", speedsText(options.speeds)},
       {"voxel storage", voxelChoiceName(options.voxels)},
+      {"bricks per node", std::to_string(options.bricksPerNode)},
       {"nodes per rank", std::to_string(nodesPerRank)},
   };
   return d;

@@ -40,9 +40,13 @@ nlohmann::json reportToJson(const NodeReport& n) {
                       {"bytes_sent", p.bytesSent}, {"bytes_received", p.bytesReceived},
                       {"messages_sent", p.messagesSent}, {"messages_received", p.messagesReceived},
                       {"start_s", p.start}, {"end_s", p.end}});
+  nlohmann::json bricks = nlohmann::json::array();
+  for (const NodeReport::BrickRender& b : n.bricks)
+    bricks.push_back({{"brick", b.brick}, {"seconds", b.seconds}, {"rays", b.rays}, {"samples", b.samples},
+                      {"start_s", b.start}, {"end_s", b.end}});
   return {{"rank", n.rank}, {"render_s", n.renderSeconds}, {"rays", n.rays}, {"samples", n.samples},
           {"private_bytes", n.privateBytes}, {"timed", n.timed}, {"render_start_s", n.renderStart},
-          {"render_end_s", n.renderEnd}, {"phases", std::move(phases)}};
+          {"render_end_s", n.renderEnd}, {"phases", std::move(phases)}, {"bricks", std::move(bricks)}};
 }
 
 NodeReport reportFromJson(const std::string& text, int node) {
@@ -74,6 +78,10 @@ NodeReport reportFromJson(const std::string& text, int node) {
       s.end = p.at("end_s").get<double>();
       n.phases.push_back(std::move(s));
     }
+    for (const auto& b : j.at("bricks"))
+      n.bricks.push_back(NodeReport::BrickRender{b.at("brick").get<int>(), b.at("seconds").get<double>(),
+                                                 b.at("rays").get<std::uint64_t>(), b.at("samples").get<std::uint64_t>(),
+                                                 b.at("start_s").get<double>(), b.at("end_s").get<double>()});
     return n;
   } catch (const nlohmann::json::exception& e) {
     throw Error("report from node " + std::to_string(node) + ": malformed JSON: " + e.what());
@@ -81,16 +89,27 @@ NodeReport reportFromJson(const std::string& text, int node) {
 }
 
 //! Reads node `node`'s brick straight from the source: only the voxels it stores (owned box plus
-//! the replicated and ghost layers), as distributeBricks + receiveBrick would have given it.
-void loadBrick(NodeState& state, int node, const VolumeSource& source, const KdTree& tree,
-               const VoxelStorage& storage) {
+//! the replicated and ghost layers), as distributeBricks + receiveBrick would have given it; with
+//! over-decomposition its M sub-bricks, as distributePieces would have (kept shippable: another
+//! node may render one).
+void loadBricks(NodeState& state, int node, const VolumeSource& source, const KdTree& tree, const BrickLayout& layout,
+                const VoxelStorage& storage) {
   const VolumeInfo& info = source.info();
-  const VoxelBox& owned = tree.brick(node);
-  const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
-  std::vector<float> raw(stored.empty() ? 0 : std::size_t(stored.count()));
-  if (!stored.empty()) source.read(stored, raw.data());
+  auto read = [&](const VoxelBox& owned) {
+    const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
+    std::vector<float> raw(stored.empty() ? 0 : std::size_t(stored.count()));
+    if (!stored.empty()) source.read(stored, raw.data());
+    return raw;
+  };
   state.rank = node;
-  state.brick = Brick(owned, info.dims, info.spacing, std::move(raw), Brick::Shipping::No, 0, storage);
+  if (layout.perNode() == 1) {
+    const VoxelBox& owned = tree.brick(node);
+    state.brick = Brick(owned, info.dims, info.spacing, read(owned), Brick::Shipping::No, 0, storage);
+    return;
+  }
+  for (int b = node * layout.perNode(); b < (node + 1) * layout.perNode(); ++b)
+    state.pieces.insert_or_assign(
+        b, Brick(layout.box(b), info.dims, info.spacing, read(layout.box(b)), Brick::Shipping::Yes, 0, storage));
 }
 
 //! Collective: throws on every rank when any rank has a problem (see firstProblemOfAnyRank).
@@ -131,7 +150,10 @@ void allReduceInChunks(T* data, std::size_t count, MPI_Datatype type, MPI_Op op)
 //! max of maxima; fine codes min of lo, max of hi).
 CellRangeGrid mergedCellSummary(const glm::ivec3& dims, const std::vector<NodeState>& states) {
   std::vector<const Brick*> bricks;
-  for (const NodeState& s : states) bricks.push_back(&s.brick);
+  for (const NodeState& s : states) {
+    bricks.push_back(&s.brick);
+    for (const auto& [id, piece] : s.pieces) bricks.push_back(&piece);
+  }
   std::vector<glm::vec2> ranges = CellRangeGrid::rangesOf(dims, bricks);
   std::vector<float> lows(ranges.size()), highs(ranges.size());
   for (std::size_t i = 0; i < ranges.size(); ++i) lows[i] = ranges[i].x, highs[i] = ranges[i].y;
@@ -182,6 +204,8 @@ void runNode(MpiNetwork& net, MpiRankFrame& frame, int local) {
   // which trails the host's start by one message.
   const double started = nowSeconds();
   NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, *frame.plan, nullptr);
+  for (const NodeReport::BrickRender& b : report.bricks)  // one node renders each brick: no two write one entry
+    frame.brickWorkHere[std::size_t(b.brick)] = brickWork(b.samples, b.rays);
   report.rebaseTimes(started);
   Message out;
   out.text = reportToJson(report).dump();
@@ -242,12 +266,17 @@ MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& reque
       // The partition in the strategy's group shape, exactly as the in-process cluster builds it.
       strategy(createStrategy(options.strategy, options.composite)),
       tree(KdTree::build(source.info().dims, ranks * nodesPerRank, options.partition, options.slabAxis,
-                         strategy->treeShape(ranks * nodesPerRank), PartitionBalance{std::move(cost), options.speeds})),
+                         strategy->treeShape(ranks * nodesPerRank), PartitionBalance{cost, options.speeds})),
+      layout(tree, options.bricksPerNode, PartitionBalance{cost, {}}),
       storage(VoxelStorage::forVolume(source.info(), options.voxels)),
       states(std::size_t(nodesPerRank)),
       loadSeconds(std::size_t(nodesPerRank), 0.0) {
   plan.emplace(this->request, tree, source.info().spacing, resolveValueRange(request.settings, source.info()),
                *strategy);
+  if (layout.perNode() > 1) {
+    brickCost = firstBrickCosts(layout, cost.get(), source.info().dims);
+    held.assign(std::size_t(ranks * nodesPerRank), {});
+  }
 }
 
 void MpiRankFrame::setView(const View& view) {
@@ -296,7 +325,8 @@ std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const
     frame->arena.execute([&] {
       tbb::parallel_for(0, nodesPerRank, [&](int i) {
         const double start = nowSeconds();
-        loadBrick(frame->states[std::size_t(i)], rank * nodesPerRank + i, source, frame->tree, frame->storage);
+        loadBricks(frame->states[std::size_t(i)], rank * nodesPerRank + i, source, frame->tree, frame->layout,
+                   frame->storage);
         frame->loadSeconds[std::size_t(i)] = nowSeconds() - start;
       });
     });
@@ -307,7 +337,7 @@ std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const
 
   // Occlusion culling, as VirtualCluster::renderFrame does it: the same summary (here merged from
   // the ranks' bricks), the same grid and the same map, so frames equal the virtual cluster's.
-  if (request.settings.cullOccluded && ranks * nodesPerRank > 1) {
+  if (request.settings.cullOccluded && frame->layout.bricks() > 1) {
     frame->arena.execute([&] {
       const CellRangeGrid cells = mergedCellSummary(source.info().dims, frame->states);
       const glm::vec2 map = normalisingScaleBias(frame->plan->valueRange);
@@ -324,6 +354,12 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, MpiRankFrame& frame) {
   outcome.ranks = net.worldSize();
   outcome.nodesPerRank = net.nodesPerRank();
   const std::string where = "rank " + std::to_string(net.worldRank());
+  const bool pieces = frame.layout.perNode() > 1;
+  if (pieces) {  // local, the same on every rank: the same book gives the same hand-out
+    frame.schedule = scheduleBricks(frame.layout, frame.brickCost, frame.options.speeds, frame.held);
+    frame.plan->bricks = &frame.schedule;
+    frame.brickWorkHere.assign(frame.brickCost.size(), 0.0);
+  }
   bool hostDone = false;
   try {
     frame.arena.execute([&] {
@@ -363,6 +399,15 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, MpiRankFrame& frame) {
   static_assert(sizeof(unsigned long long) == sizeof(std::uint64_t));
   MPI_Gather(&rss, 1, MPI_UNSIGNED_LONG_LONG, outcome.rankPeakRss.data(), 1, MPI_UNSIGNED_LONG_LONG, 0,
              MPI_COMM_WORLD);
+  if (pieces) {
+    // The next frame's estimates: each brick's work from the rank whose node rendered it (the
+    // others hold 0). Only after a frame every rank completed: a failed one ends the run anyway.
+    std::vector<double> work = frame.brickWorkHere;
+    int failed = net.aborted() ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    allReduceInChunks(work.data(), work.size(), MPI_DOUBLE, MPI_SUM);
+    if (!failed) frame.brickCost = std::move(work);
+  }
   outcome.ok = net.worldRank() == 0 ? hostDone && !net.aborted() : !net.aborted();
   if (!outcome.ok) outcome.error = net.abortReason();
   if (outcome.ok && net.worldRank() == 0)

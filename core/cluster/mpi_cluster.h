@@ -11,12 +11,14 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 #include <oneapi/tbb/task_arena.h>
 
+#include "core/cluster/brick_schedule.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/comm/mpi_network.h"
 #include "core/partition/cost_field.h"
@@ -27,10 +29,10 @@ namespace kdswap {
 
 //! Message tags of the MPI frame protocol (beside kTileTag): node -> host "ready" (its brick's load
 //! time and its rank's culling-map time), host -> node "start the frame", node -> host "my
-//! NodeReport" (JSON text).
-inline constexpr int kReadyTag = 12;
-inline constexpr int kGoTag = 13;
-inline constexpr int kReportTag = 14;
+//! NodeReport" (JSON text). Apart from the node program's tags (10 to 12).
+inline constexpr int kReadyTag = 20;
+inline constexpr int kGoTag = 21;
+inline constexpr int kReportTag = 22;
 
 //! One rank's part of a frame, ready to render: the partition and plan every rank computes alike,
 //! this rank's nodes with their bricks loaded, and, with occlusion culling, the whole volume's cell
@@ -56,10 +58,19 @@ struct MpiRankFrame {
   tbb::task_arena arena;
   std::unique_ptr<Strategy> strategy;
   KdTree tree;
+  //! Over-decomposition (--bricks-per-node M; perNode 1 when off): every rank keeps the same book
+  //! (the next frame's cost estimates and who holds which brick), so every rank plans the same
+  //! hand-out; the costs measured where each brick was rendered are summed over the ranks after
+  //! every frame.
+  BrickLayout layout;
+  std::vector<double> brickCost;      //!< per brick: estimated work for the next frame
+  std::vector<std::set<int>> held;    //!< per node: foreign bricks it holds
+  BrickSchedule schedule;             //!< the current frame's hand-out (when perNode > 1)
+  std::vector<double> brickWorkHere;  //!< per brick: this frame's work if this rank's node rendered it, else 0
   std::optional<FramePlan> plan;
   VoxelStorage storage;
   std::vector<NodeState> states;    //!< this rank's nodes, firstLocalNode() + i
-  std::vector<double> loadSeconds;  //!< each of this rank's nodes: brick read + gradients
+  std::vector<double> loadSeconds;  //!< each of this rank's nodes: its bricks' read + gradients
   std::optional<OcclusionGrid> occlusionGrid;  //!< culling's per-transfer-function grid, when active
   std::optional<OcclusionMap> occlusionMap;
   double mapSeconds = 0;            //!< this rank's occlusion map, computed before the frame starts
@@ -88,9 +99,10 @@ struct MpiFrameOutcome {
   nlohmann::json statsJson() const;
 };
 
-//! Collective: every rank calls it once with its prepared frame. Finishes `network` (no MPI
-//! traffic may follow through it). Never throws for a node's failure: it is in the outcome on
-//! rank 0.
+//! Collective: every rank calls it once per frame with its prepared frame. Finishes `network` (no
+//! MPI traffic may follow through it). With over-decomposition it plans the frame's hand-out first
+//! and afterwards sums the bricks' measured work over the ranks for the next frame's plan. Never
+//! throws for a node's failure: it is in the outcome on rank 0.
 MpiFrameOutcome renderFrameOverMpi(MpiNetwork& network, MpiRankFrame& frame);
 
 }  // namespace kdswap

@@ -91,11 +91,6 @@ Mailbox::WaitMode waitModeFor(NodeExecution execution) {
   return execution == NodeExecution::Threads ? Mailbox::WaitMode::BlockThread : Mailbox::WaitMode::SuspendTask;
 }
 
-//! Over-decomposition's estimate of a brick's work for the next frame: the samples it took plus
-//! a cost per ray for setup and empty-space stepping. Counts, not seconds: measured times on a
-//! shared machine vary far more from frame to frame than the work does.
-double brickWork(const NodeReport::BrickRender& b) { return double(b.samples) + 16.0 * double(b.rays); }
-
 int validatedNodes(int nodes) {
   if (nodes < 1 || nodes > kMaxNodes)
     throw Error("nodes " + std::to_string(nodes) + ": must be between 1 and " + std::to_string(kMaxNodes));
@@ -152,8 +147,7 @@ VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions&
   if (pieces) {
     // First frame's estimate: the cost field's, or the cells of each brick; later frames use the
     // work measured per brick (see brickWork).
-    const CostField uniform = cost_ ? CostField{} : CostField::uniform(info_.dims);
-    for (int b = 0; b < layout_.bricks(); ++b) brickCost_.push_back((cost_ ? *cost_ : uniform).cost(layout_.box(b)));
+    brickCost_ = firstBrickCosts(layout_, cost_.get(), info_.dims);
     held_.assign(std::size_t(options.nodes), {});
   }
   std::vector<const Brick*> bricks;
@@ -358,7 +352,7 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   s.peakRssBytes = peakResidentBytes();
   restoreHeld.done = true;
   for (const NodeReport& n : reports)
-    for (const NodeReport::BrickRender& b : n.bricks) brickCost_[std::size_t(b.brick)] = brickWork(b);
+    for (const NodeReport::BrickRender& b : n.bricks) brickCost_[std::size_t(b.brick)] = brickWork(b.samples, b.rays);
   s.network = options_.network;
   if (!options_.speeds.empty())
     for (NodeReport& n : reports) n.speed = options_.speeds[std::size_t(n.rank)];

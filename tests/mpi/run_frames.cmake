@@ -1,9 +1,11 @@
 # Several frames over MPI (cmake -P): kdswap-mpi --frames 3 --orbit 20 keeps the bricks loaded and
 # turns the view; its image (the last frame, at azimuth 30 + 2 x 20) must equal kdswap render's at
 # that view bit for bit, and the stats must hold the three measured frames and their medians.
-# In: KDSWAP, KDSWAP_MPI, COMPARE, MPIEXEC, MPIFLAGS (;-list), WORK.
+# In: KDSWAP, KDSWAP_MPI, COMPARE, MPIEXEC, MPIFLAGS (;-list), WORK, EXTRA (;-list of options for
+# both programs, may be empty), CROSS_RANK (0, or --bricks-per-node M: the last frame must have
+# some node render a sub-brick whose home node is on the other rank, shipped there over MPI).
 file(MAKE_DIRECTORY ${WORK})
-set(scene --dataset phantom:48 --size 96x80)
+set(scene --dataset phantom:48 --size 96x80 ${EXTRA})
 set(mpi ${MPIEXEC} ${MPIFLAGS} -np 2 ${KDSWAP_MPI} render ${scene} --view 30,15 --nodes-per-rank 2 --frames 3
     --orbit 20 --verify --out ${WORK}/mpi.exr --stats ${WORK}/mpi.json)
 set(inproc ${KDSWAP} render ${scene} --view 70,15 --nodes 4 --quiet --out ${WORK}/inproc.exr)
@@ -26,4 +28,24 @@ string(JSON walls LENGTH "${stats}" frames wall_s)
 string(JSON medianWall GET "${stats}" frames median wall_s)
 if(NOT count EQUAL 3 OR NOT walls EQUAL 3 OR NOT medianWall GREATER 0)
   message(FATAL_ERROR "stats frames: count ${count}, ${walls} wall times, median ${medianWall}")
+endif()
+if(CROSS_RANK)
+  # 2 ranks x 2 nodes: nodes 0-1 on rank 0, 2-3 on rank 1; sub-brick b's home is node b / M, with
+  # M = CROSS_RANK (--bricks-per-node).
+  set(crossed 0)
+  foreach(node RANGE 3)
+    string(JSON count LENGTH "${stats}" per_node ${node} bricks_rendered)
+    math(EXPR lastBrick "${count} - 1")
+    foreach(i RANGE ${lastBrick})
+      string(JSON brick GET "${stats}" per_node ${node} bricks_rendered ${i})
+      math(EXPR homeRank "${brick} / ${CROSS_RANK} / 2")
+      math(EXPR rank "${node} / 2")
+      if(NOT homeRank EQUAL rank)
+        set(crossed 1)
+      endif()
+    endforeach()
+  endforeach()
+  if(NOT crossed)
+    message(FATAL_ERROR "no node rendered a sub-brick from the other rank in the last frame")
+  endif()
 endif()
