@@ -206,6 +206,8 @@ void runNode(MpiNetwork& net, MpiRankFrame& frame, int local) {
   NodeReport report = runNodeFrame(frame.states[std::size_t(local)], comm, *frame.plan, nullptr);
   for (const NodeReport::BrickRender& b : report.bricks)  // one node renders each brick: no two write one entry
     frame.brickWorkHere[std::size_t(b.brick)] = brickWork(b.samples, b.rays);
+  frame.raysHere += report.rays;
+  frame.occludedHere += report.occluded;
   report.rebaseTimes(started);
   Message out;
   out.text = reportToJson(report).dump();
@@ -285,7 +287,7 @@ void MpiRankFrame::setView(const View& view) {
   plan.emplace(request, tree, info.spacing, resolveValueRange(request.settings, info), *strategy);
   occlusionMap.reset();
   mapSeconds = 0;
-  if (!occlusionGrid) return;
+  if (!occlusionGrid || !cullingRest.mapThisFrame()) return;
   const double start = nowSeconds();
   arena.execute([&] {
     occlusionMap.emplace(*occlusionGrid, plan->camera, glm::vec3(info.dims - 1) * info.spacing, info.spacing,
@@ -360,6 +362,7 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, MpiRankFrame& frame) {
     frame.plan->bricks = &frame.schedule;
     frame.brickWorkHere.assign(frame.brickCost.size(), 0.0);
   }
+  frame.raysHere = 0, frame.occludedHere = 0;
   bool hostDone = false;
   try {
     frame.arena.execute([&] {
@@ -399,6 +402,11 @@ MpiFrameOutcome renderFrameOverMpi(MpiNetwork& net, MpiRankFrame& frame) {
   static_assert(sizeof(unsigned long long) == sizeof(std::uint64_t));
   MPI_Gather(&rss, 1, MPI_UNSIGNED_LONG_LONG, outcome.rankPeakRss.data(), 1, MPI_UNSIGNED_LONG_LONG, 0,
              MPI_COMM_WORLD);
+  if (frame.plan->occlusion) {  // the rest rule on the whole frame's counts, alike on every rank
+    std::uint64_t counts[2] = {frame.raysHere, frame.occludedHere};
+    MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    frame.cullingRest.afterFrame(counts[0], counts[1]);
+  }
   if (pieces) {
     // The next frame's estimates: each brick's work from the rank whose node rendered it (the
     // others hold 0). Only after a frame every rank completed: a failed one ends the run anyway.

@@ -8,6 +8,7 @@
 
 #if KDSWAP_HAVE_MPI
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -19,6 +20,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "core/cluster/brick_schedule.h"
+#include "core/cluster/culling_rest.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/comm/mpi_network.h"
 #include "core/partition/cost_field.h"
@@ -47,8 +49,8 @@ struct MpiRankFrame {
   MpiRankFrame& operator=(const MpiRankFrame&) = delete;
 
   //! Local, the same on every rank: the next frame looks from `view` (a new plan, and with culling
-  //! a new occlusion map, timed in mapSeconds). Every frame computes the map: the virtual cluster's
-  //! rule of resting it after frames where it culled little is not applied here.
+  //! a new occlusion map, timed in mapSeconds, unless culling rests: CullingRest, whose counts
+  //! renderFrameOverMpi sums over the ranks, as the virtual cluster decides it). Once per frame.
   void setView(const View& view);
 
   const VolumeSource& source;
@@ -73,6 +75,8 @@ struct MpiRankFrame {
   std::vector<double> loadSeconds;  //!< each of this rank's nodes: its bricks' read + gradients
   std::optional<OcclusionGrid> occlusionGrid;  //!< culling's per-transfer-function grid, when active
   std::optional<OcclusionMap> occlusionMap;
+  CullingRest cullingRest;
+  std::atomic<std::uint64_t> raysHere{0}, occludedHere{0};  //!< this frame's, over this rank's nodes
   double mapSeconds = 0;            //!< this rank's occlusion map, computed before the frame starts
 };
 

@@ -27,11 +27,6 @@ std::string formatSeconds(double seconds) {
   return text;
 }
 
-// Occlusion culling's rest rule (renderFrame): below this share of ray-brick pairs culled, its map
-// costs more than it saves; so many frames then go without it.
-constexpr double kMinCulledShare = 0.05;
-constexpr int kCullingRestFrames = 15;
-
 // Aborts the frame when no message moves and no node finishes for `limit` seconds, naming who
 // waits on whom: every wait can end.
 class StallWatchdog {
@@ -261,16 +256,10 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
   std::optional<OcclusionMap> occlusion;
   // Culling never moves an image away from the single-node one (with --ert 1 it changes nothing;
-  // with early termination it removes light that local termination keeps): it saves work. Its map
-  // (one march per pixel) pays where opaque matter hides much of the bricks behind it (turbulence:
-  // 64% of ray-brick pairs culled, 17.8 M -> 6.2 M samples) and costs ~8% of the frame where little
-  // is hidden (CT head, default scene: ~1%). After a frame that culled under kMinCulledShare of its pairs, the next
-  // kCullingRestFrames frames skip it; then it is tried again (the view or transfer function may
-  // have changed).
+  // with early termination it removes light that local termination keeps): it saves work, and
+  // rests where it saved little (CullingRest).
   const bool culling = request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1;
-  if (culling && cullingRestFrames_ > 0) {
-    --cullingRestFrames_;
-  } else if (culling) {
+  if (culling && cullingRest_.mapThisFrame()) {
     const glm::vec2 map = normalisingScaleBias(plan.valueRange);
     const OcclusionGrid& grid = occlusionGridFor(plan.table, map.x, map.y, request.settings.earlyTermination);
     if (grid.active())
@@ -319,7 +308,7 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   if (plan.occlusion) {
     std::uint64_t rays = 0, occluded = 0;
     for (const NodeReport& r : reports) rays += r.rays, occluded += r.occluded;
-    if (double(occluded) < kMinCulledShare * double(rays)) cullingRestFrames_ = kCullingRestFrames;
+    cullingRest_.afterFrame(rays, occluded);
   }
 
   // Gather: every tile is in the host's mailbox by now.

@@ -14,6 +14,7 @@
 #include <glm/vec4.hpp>
 #include <oneapi/tbb/task_arena.h>
 
+#include "core/cluster/culling_rest.h"
 #include "core/cluster/fault_plan.h"
 #include "core/cluster/frame_request.h"
 #include "core/cluster/node_program.h"
@@ -139,9 +140,7 @@ class VirtualCluster {
   };
   const OcclusionGrid& occlusionGridFor(const TransferTable& table, float scale, float bias, float stopAt);
   OcclusionGridCache occlusionGrid_;
-  //! Frames left that skip occlusion culling: its per-frame map costs more than it saves where
-  //! little is hidden (renderFrame).
-  int cullingRestFrames_ = 0;
+  CullingRest cullingRest_;  //!< occlusion culling rests where its map saved little
   FaultPlan fault_;  //!< armed for the next frame only
 };
 
