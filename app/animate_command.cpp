@@ -166,6 +166,9 @@ void run(const AnimateOptions& o) {
   for (int i = 0; i < o.frames; ++i)
     if (!writer.isDone(i) || (o.phases && !std::filesystem::exists(writer.phasesPath(i)))) todo.push_back(i);
   if (o.resume) std::fprintf(stderr, "resume: %d of %d frames already done\n", o.frames - int(todo.size()), o.frames);
+  if (writer.staleRemoved() > 0)
+    std::fprintf(stderr, "removed %d pictures of an earlier run from %s (frames this run does not make)\n",
+                 writer.staleRemoved(), o.outDir.c_str());
 
   // The one distribution of the data (paper Table 5); from here on only the view and TF change.
   VirtualCluster cluster(*scene.source, scene.cluster);

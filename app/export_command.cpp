@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/bench/quantised_source.h"
 #include "core/util/error.h"
@@ -34,6 +35,7 @@ void runExport(const ExportOptions& o) {
   // 8-bit samples cannot keep 16-bit levels: one of the two options would be silently ignored.
   if (o.quantise == 16 && o.type == "uint8")
     throw Error("--type uint8 cannot hold --quantise 16's levels; use --type uint16 or float32, or --quantise 8");
+  checkOutputFiles({{"--out", o.out}}, {});  // the input may be replaced: the file is written beside it, then renamed
   std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(o.dataset) : openVolumeFile(o.volume);
   if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
@@ -46,13 +48,20 @@ void runExport(const ExportOptions& o) {
   const NrrdSample sample = parseNrrdSample(type, "--type");
   const VolumeInfo& info = source->info();
   static const bool tty = isatty(2);
-  writeNrrd(o.out, *source, sample, [&](int done, int total) {
+  const NrrdWritten written = writeNrrd(o.out, *source, sample, [&](int done, int total) {
     if (tty && (done % 16 == 0 || done == total)) std::fprintf(stderr, "\rexport: slice %d of %d", done, total);
   });
   if (tty) std::fprintf(stderr, "\n");
   std::printf("wrote %s (%d x %d x %d %s, spacing %g %g %g, values %g .. %g)\n", o.out.c_str(), info.dims.x, info.dims.y,
               info.dims.z, type.c_str(), double(info.spacing.x), double(info.spacing.y), double(info.spacing.z),
               double(info.minValue), double(info.maxValue));
+  // A built-in data set declares its range (0 .. 1) and is rendered over it; a file's range is
+  // what its voxels span. Where the two differ the same transfer function would map differently.
+  if (written.voxelMin != written.rangeMin || written.voxelMax != written.rangeMax)
+    std::printf("note: the voxels span %g .. %g of the range %g .. %g that %s is rendered over; render this "
+                "file with --range %g,%g for the same picture\n",
+                double(written.voxelMin), double(written.voxelMax), double(written.rangeMin),
+                double(written.rangeMax), info.name.c_str(), double(written.rangeMin), double(written.rangeMax));
 }
 
 }  // namespace
@@ -69,7 +78,7 @@ void addExportCommand(CLI::App& app) {
                   "Sample type: float32, uint8 or uint16 (levels of the value range, kept as 'old min/max'); "
                   "default: the --quantise width, else float32 (uint8 with --quantise 16 is refused)")
       ->check(nonEmpty());
-  cmd->add_option("-o,--out", options->out, "Output file (.nrrd, raw data attached; not the input file)")
+  cmd->add_option("-o,--out", options->out, "Output file (.nrrd, raw data attached; may be the input file, replaced when complete)")
       ->required()
       ->check(nonEmpty());
   cmd->footer(

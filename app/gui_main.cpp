@@ -7,7 +7,7 @@
 #include "core/util/error.h"
 #include "core/util/memory.h"
 #include "ui/gui_app.h"
-#include "ui/printable_text.h"
+#include "core/util/printable_text.h"
 
 int main(int argc, char** argv) {
   kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)

@@ -8,6 +8,9 @@
 #include "app/commands.h"
 #include "core/util/error.h"
 #include "core/util/memory.h"
+#include "core/util/printable_text.h"
+
+using kdswap::oneLine;
 
 int main(int argc, char** argv) {
   kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
@@ -31,7 +34,7 @@ int main(int argc, char** argv) {
       names += (names.empty() ? "" : ", ") + sub->get_name();
     }
     if (!known) {
-      std::fprintf(stderr, "kdswap: unknown subcommand \"%s\" (expected one of %s)\n", argv[1], names.c_str());
+      std::fprintf(stderr, "kdswap: unknown subcommand \"%s\" (expected one of %s)\n", oneLine(argv[1]).c_str(), names.c_str());
       return 2;
     }
   }
@@ -42,15 +45,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "kdswap: %s\n", e.what());
+    std::fprintf(stderr, "kdswap: %s\n", oneLine(e.what()).c_str());
     return 2;
   } catch (const kdswap::CommandExit& e) {
     return e.code;
   } catch (const kdswap::Error& e) {
-    std::fprintf(stderr, "kdswap: %s\n", e.what());
+    std::fprintf(stderr, "kdswap: %s\n", oneLine(e.what()).c_str());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "kdswap: unexpected error: %s\n", e.what());
+    std::fprintf(stderr, "kdswap: unexpected error: %s\n", oneLine(e.what()).c_str());
     return 2;
   }
   return 0;

@@ -16,6 +16,7 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 
+#include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/bench/statistics.h"
 #include "core/cluster/mpi_cluster.h"
@@ -25,6 +26,7 @@
 #include "core/util/error.h"
 #include "core/util/file_writer.h"
 #include "core/util/memory.h"
+#include "core/util/printable_text.h"
 
 namespace kdswap {
 namespace {
@@ -58,12 +60,6 @@ nlohmann::json framesJson(const std::vector<FrameStats>& measured, float orbitDe
 
 constexpr float kVerifyTolerance = 1e-5f;
 
-void checkParentFolderExists(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-  std::error_code ec;
-  if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
-}
-
 //! Collective: ranks that disagree on K would number the nodes differently and wait for messages
 //! that never come. Returns the problem on every rank alike (empty when they agree).
 std::string nodesPerRankDisagreement(int nodesPerRank, int ranks) {
@@ -85,6 +81,12 @@ void checkRankOptions(MpiRenderOptions& o, int ranks, bool nodesGiven) {
     throw Error("--nodes " + std::to_string(o.scene.nodes) + ": must equal MPI ranks (" + std::to_string(ranks) +
                 ") x --nodes-per-rank (" + std::to_string(o.nodesPerRank) + "); or leave it out");
   if (!(o.stallSeconds > 0)) throw Error("--stall-seconds must be > 0");
+  if (o.frames < 1 || o.frames > 100000) throw Error("--frames " + std::to_string(o.frames) + ": expected 1 to 100000");
+  if (!(o.orbitDeg >= -360.0f && o.orbitDeg <= 360.0f)) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", double(o.orbitDeg));
+    throw Error(std::string("--orbit ") + value + ": expected degrees from -360 to 360");
+  }
   if (o.orbitGiven && o.frames < 2) throw Error("--orbit turns the view between frames: give --frames 2 or more");
   o.scene.nodes = ranks * o.nodesPerRank;
 }
@@ -139,10 +141,10 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   Scene scene;
   if (problem.empty()) try {
       checkRankOptions(o, ranks, nodesGiven);
-      if (rank == 0) {
-        if (!isSupportedImagePath(o.out)) throw Error("--out " + o.out + ": unsupported image extension");
-        checkParentFolderExists(o.out);
-        if (!o.stats.empty()) checkParentFolderExists(o.stats);
+      if (rank == 0) {  // rank 0 writes them
+        if (!isSupportedImagePath(o.out))
+          throw Error("--out " + o.out + ": unsupported image extension (expected .png, .exr, .tif, .tiff or .jpg)");
+        checkOutputFiles({{"--out", o.out}, {"--stats", o.stats}}, {o.scene.volume, existingFileOrEmpty(o.scene.tf)});
       }
       scene = buildScene(o.scene);  // opens the volume on this rank: headers only for plain files
     } catch (const std::exception& e) {
@@ -179,7 +181,7 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
     int ok = outcome.ok ? 1 : 0;
     MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (!ok) {
-      if (rank == 0) std::fprintf(stderr, "kdswap-mpi: %s\n", outcome.error.c_str());
+      if (rank == 0) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(outcome.error).c_str());
       code = 2;
     } else if (rank == 0 && (total == 1 || f > 0)) {
       measured.push_back(outcome.result.stats);
@@ -192,7 +194,7 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
     try {
       code = writeResults(o, scene, outcome, measured);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+      std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(e.what()).c_str());
       code = 2;
     }
   }
@@ -203,18 +205,28 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
 }  // namespace
 }  // namespace kdswap
 
+using kdswap::oneLine;
+
 int main(int argc, char** argv) {
   kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
   std::unique_ptr<kdswap::MpiSession> session;
   try {
     session = std::make_unique<kdswap::MpiSession>(argc, argv);
   } catch (const kdswap::Error& e) {
-    std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+    std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(e.what()).c_str());
     return 2;
   }
   const bool root = session->rank() == 0;
   CLI::App app{"kdswap-mpi: the kdswap node program on MPI ranks (mpirun -np R kdswap-mpi render ...)"};
   app.require_subcommand(1);
+  // Only `render` runs over MPI; name it rather than CLI11's "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "render") {
+    const std::string problem = std::string("unknown subcommand \"") + argv[1] +
+                                "\": kdswap-mpi has only render (bench, animate, export and info are kdswap's)";
+    const std::string first = kdswap::firstProblemOfAnyRank(problem);
+    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(first).c_str());
+    return 2;
+  }
   kdswap::MpiRenderOptions o;
   CLI::App* cmd = app.add_subcommand("render", "Render one frame on R ranks x K nodes and write the image on rank 0");
   kdswap::addSceneOptions(cmd, o.scene);
@@ -230,12 +242,11 @@ int main(int argc, char** argv) {
   cmd->add_option("--frames", o.frames,
                   "Render this many measured frames (1..100000) after a warm-up frame, the view turning --orbit "
                   "degrees a frame; prints and writes (--stats \"frames\") their medians; the image is the last")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+      ->capture_default_str();
   cmd->add_option("--orbit", o.orbitDeg, "With --frames: degrees the view turns per frame (azimuth), -360..360")
-      ->capture_default_str()
-      ->check(CLI::Range(-360.0f, 360.0f));
-  cmd->add_option("--out,-o", o.out, "Output image (.png, .exr, .tif), written by rank 0")->capture_default_str();
+      ->capture_default_str();
+  cmd->add_option("--out,-o", o.out, "Output image, by extension: .png, .exr, .tif, .tiff or .jpg, written by rank 0")
+      ->capture_default_str();
   cmd->add_option("--stats", o.stats, "Write the frame's figures as JSON (kdswap render keys + per_rank)");
   cmd->add_flag("--verify", o.verify, "Also render the single-node reference on rank 0; exit 1 if they differ");
   cmd->add_flag("--quiet,-q", o.quiet, "Print nothing but errors and the verify line");
@@ -263,7 +274,7 @@ int main(int argc, char** argv) {
   // Collective from here: a rank that stopped alone would leave the others waiting in MPI.
   const std::string first = kdswap::firstProblemOfAnyRank(problem);
   if (!first.empty()) {
-    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", first.c_str());
+    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(first).c_str());
     return 2;
   }
   const int asking = kdswap::firstRankWith(help || allHelp);
@@ -277,7 +288,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     // Problems before the frame are agreed among the ranks (the same message on every rank), and
     // the frame's own are in its outcome: rank 0 reports them.
-    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", e.what());
+    if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(e.what()).c_str());
     return 2;
   }
 }

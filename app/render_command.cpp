@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/cluster/phase_grid.h"
 #include "core/image/image_io.h"
@@ -52,23 +53,28 @@ ImageWriteOptions parseBackground(const std::string& text) {
 // The extensions isSupportedImagePath accepts, as writeImage's message lists them.
 constexpr const char* kImageExtensions = ".png, .exr, .tif, .tiff or .jpg";
 
-void checkWritable(const std::string& path, const char* option) {
-  if (path.empty()) throw Error(std::string(option) + ": empty value");
-  if (!isSupportedImagePath(path) && std::string(option) != "--stats")
+void checkImageExtension(const std::string& path, const char* option) {
+  if (!isSupportedImagePath(path))
     throw Error(std::string(option) + " " + path + ": unsupported image extension (expected " + kImageExtensions + ")");
-  const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-  std::error_code ec;
-  if (!std::filesystem::is_directory(parent, ec)) throw Error(path + ": folder " + parent.string() + " does not exist");
+}
+
+//! JPEG has no alpha channel: "--background none" would be dropped without a word.
+void checkBackgroundFits(const ImageWriteOptions& w, const std::string& out) {
+  if (!w.background && !imageFormatHasAlpha(out))
+    throw Error("--background none: " + out + " is a JPEG, which has no alpha channel; write .png, .tif or .exr "
+                "for a transparent background, or give a colour");
 }
 
 void writeStats(const std::string& path, const nlohmann::json& j) { writeFileAtomically(path, j.dump(2) + "\n"); }
 
 void run(const RenderOptions& o) {
-  checkWritable(o.out, "--out");
-  if (!o.phases.empty()) checkWritable(o.phases, "--phases");
-  if (!o.stats.empty()) checkWritable(o.stats, "--stats");
+  checkImageExtension(o.out, "--out");
+  if (!o.phases.empty()) checkImageExtension(o.phases, "--phases");
+  checkOutputFiles({{"--out", o.out}, {"--stats", o.stats}, {"--phases", o.phases}},
+                   {o.scene.volume, existingFileOrEmpty(o.scene.tf)});
   if (!o.phasesDir.empty()) checkOutputFolder(o.phasesDir, "--phases-dir");
   const ImageWriteOptions writeOptions = parseBackground(o.background);
+  checkBackgroundFits(writeOptions, o.out);
   Scene scene = buildScene(o.scene);
   scene.request.recordPhases = !o.phases.empty() || !o.phasesDir.empty();
 

@@ -28,7 +28,7 @@
 #include "ui/frame_clock.h"
 #include "ui/input_script.h"
 #include "ui/panels.h"
-#include "ui/printable_text.h"
+#include "core/util/printable_text.h"
 #include "ui/state_dump.h"
 
 namespace kdswap {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "ui/panels.h"
-#include "ui/printable_text.h"
+#include "core/util/printable_text.h"
 
 namespace kdswap {
 namespace {

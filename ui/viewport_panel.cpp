@@ -10,7 +10,7 @@
 #include <glm/common.hpp>
 
 #include "ui/panels.h"
-#include "ui/printable_text.h"
+#include "core/util/printable_text.h"
 #include "core/camera/camera.h"
 
 namespace kdswap {

@@ -70,6 +70,19 @@ bool matches(const nlohmann::json& record, const nlohmann::json& identity) {
   return true;
 }
 
+//! The frame number of a picture this writer names ("frame_0012.png", "phases_0012.png", any
+//! number of digits), or -1 for any other file.
+int pictureNumber(const std::string& name, std::string& stem, std::string& ext) {
+  const std::size_t underscore = name.find('_'), dot = name.rfind('.');
+  if (underscore == std::string::npos || dot == std::string::npos || dot <= underscore + 1) return -1;
+  stem = name.substr(0, underscore), ext = name.substr(dot + 1);
+  const std::string digits = name.substr(underscore + 1, dot - underscore - 1);
+  if ((stem != "frame" && stem != "phases") || (ext != "png" && ext != "exr") || digits.size() > 9 ||
+      digits.find_first_not_of("0123456789") != std::string::npos)
+    return -1;
+  return std::stoi(digits);
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -96,6 +109,17 @@ SequenceWriter::SequenceWriter(const SequenceOptions& o)
         records_[frame] = std::move(j);
   }
   writeRecords(statsPath_, records_);
+  // An earlier run's pictures that this one will not overwrite: frames past this run's count,
+  // another format, or numbers of another width.
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_, ec)) {
+    std::string stem, ext;
+    const std::string name = entry.path().filename().string();
+    const int frame = pictureNumber(name, stem, ext);
+    if (frame < 0 || !entry.is_regular_file(ec)) continue;
+    const std::string ours = stem == "frame" ? framePath(frame) : phasesPath(frame);
+    if (frame < o.frames && fs::path(ours).filename() == name) continue;
+    if (fs::remove(entry.path(), ec)) ++staleRemoved_;
+  }
 }
 
 std::string SequenceWriter::framePath(int frame) const { return numbered(dir_, "frame", digits_, frame, extension_); }

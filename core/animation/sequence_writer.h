@@ -26,8 +26,13 @@ class SequenceWriter {
  public:
   //! Creates the folder and opens the stats file: truncated for a fresh run; on resume, the lines
   //! of frames whose image still exists are kept (rewritten atomically) and the rest dropped.
+  //! Frame and stage pictures this sequence will not write (an earlier run's, with more frames or
+  //! another format) are removed, so the folder, and a video made of it, holds this run's only.
   //! Throws kdswap::Error naming the folder or file when it cannot be created or written.
   explicit SequenceWriter(const SequenceOptions& options);
+
+  //! How many stale pictures the constructor removed.
+  int staleRemoved() const { return staleRemoved_; }
 
   std::string framePath(int frame) const;   //!< DIR/frame_0000.png
   std::string phasesPath(int frame) const;  //!< DIR/phases_0000.png
@@ -44,6 +49,7 @@ class SequenceWriter {
  private:
   std::string dir_, extension_, statsPath_;
   int digits_ = 4;
+  int staleRemoved_ = 0;
   std::map<int, nlohmann::json> records_;
 };
 

@@ -68,6 +68,11 @@ bool isSupportedImagePath(const std::string& path) {
   return ext == ".png" || ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".jpg" || ext == ".jpeg";
 }
 
+bool imageFormatHasAlpha(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  return isSupportedImagePath(path) && ext != ".jpg" && ext != ".jpeg";
+}
+
 void writeImage(const std::string& path, const Image& image, const ImageWriteOptions& options) {
   if (!isSupportedImagePath(path))
     throw Error(path + ": unsupported image extension (expected .png, .exr, .tif, .tiff or .jpg)");

@@ -26,4 +26,7 @@ Image readImage(const std::string& path);
 //! True when `path` ends in an extension writeImage understands (.png .exr .tif .tiff .jpg).
 bool isSupportedImagePath(const std::string& path);
 
+//! True when the format of `path` keeps an alpha channel (.png .exr .tif .tiff; not .jpg).
+bool imageFormatHasAlpha(const std::string& path);
+
 }  // namespace kdswap

@@ -15,7 +15,7 @@
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/memory_volume.h"
 #include "ui/histogram.h"
-#include "ui/printable_text.h"
+#include "core/util/printable_text.h"
 #include "ui/render_worker.h"
 #include "ui/sweep_worker.h"
 #include "ui/timeline_layout.h"

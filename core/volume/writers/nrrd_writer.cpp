@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -56,8 +57,8 @@ NrrdSample parseNrrdSample(const std::string& text, const std::string& option) {
   throw Error(option + " \"" + text + "\": expected float32, uint8 or uint16");
 }
 
-void writeNrrd(const std::string& path, const VolumeSource& source, NrrdSample sample,
-               const std::function<void(int, int)>& progress) {
+NrrdWritten writeNrrd(const std::string& path, const VolumeSource& source, NrrdSample sample,
+                      const std::function<void(int, int)>& progress) {
   const VolumeInfo& info = source.info();
   // Beside the target, renamed into place at the end: a failure leaves no partial file, and the
   // volume being read may be the very file being replaced.
@@ -77,13 +78,25 @@ void writeNrrd(const std::string& path, const VolumeSource& source, NrrdSample s
   file.write(std::string_view(header, std::size_t(n)));
   std::vector<float> slice(std::size_t(info.dims.x) * std::size_t(info.dims.y));
   std::vector<unsigned char> bytes;
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
   for (int z = 0; z < info.dims.z; ++z) {
     source.read(VoxelBox{glm::ivec3(0, 0, z), glm::ivec3(info.dims.x, info.dims.y, z + 1)}, slice.data());
+    for (float v : slice) lo = std::min(lo, v), hi = std::max(hi, v);  // sources write NaN as min
     encodeSlice(slice, sample, info.minValue, info.maxValue, bytes);
     file.write(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     if (progress) progress(z + 1, info.dims.z);
   }
   file.commit();
+  NrrdWritten written{lo, hi, info.minValue, info.maxValue};
+  if (sample != NrrdSample::Float32) {  // in levels, as encodeSlice stores them
+    std::vector<float> ends{lo, hi, info.minValue, info.maxValue};
+    std::vector<unsigned char> levels;
+    encodeSlice(ends, sample, info.minValue, info.maxValue, levels);
+    const bool wide = sample == NrrdSample::Uint16;
+    auto level = [&](int i) { return wide ? float(levels[2 * i] | levels[2 * i + 1] << 8) : float(levels[i]); };
+    written = NrrdWritten{level(0), level(1), level(2), level(3)};
+  }
+  return written;
 }
 
 }  // namespace kdswap

@@ -1,5 +1,5 @@
 // \xNN escapes for what a terminal or ImGui cannot show.
-#include "ui/printable_text.h"
+#include "core/util/printable_text.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -33,12 +33,13 @@ std::size_t utf8Length(std::string_view text, std::size_t i) {
 
 }  // namespace
 
-std::string printableText(std::string_view text) {
+std::string printableText(std::string_view text, LineBreaks breaks) {
+  const bool keepBreaks = breaks == LineBreaks::Keep;
   std::string out;
   out.reserve(text.size());
   for (std::size_t i = 0; i < text.size();) {
     const unsigned char b = static_cast<unsigned char>(text[i]);
-    if ((b >= 0x20 && b < 0x7F) || b == '\n' || b == '\t') {
+    if ((b >= 0x20 && b < 0x7F) || (keepBreaks && (b == '\n' || b == '\t'))) {
       out += char(b);
       ++i;
       continue;
