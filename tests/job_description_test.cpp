@@ -46,9 +46,22 @@ TEST_CASE("job description: another file of the same size is told by the voxels 
   REQUIRE(b.volume->info().maxValue == a.volume->info().maxValue);
   const std::string d = difference(b.describe(), a.describe());
   CHECK(d.find("volume content") == 0);
-  CHECK(d.find("(0, 0, 8) to (23, 19, 8)") != std::string::npos);
+  CHECK(d.find("z slices 1, 3, 5, 7, 8, 9, 11, 13, 15)") != std::string::npos);
   CHECK(d.find("on rank 1") != std::string::npos);
   CHECK(d.find("on rank 0") != std::string::npos);
+}
+
+TEST_CASE("job description: a difference in another eighth of z than the middle is told too") {
+  const Job a;
+  const glm::ivec3 dims = a.volume->info().dims;
+  for (const int z : {1, 15}) {  // sampled slices of the first and the last eighth
+    CAPTURE(z);
+    Job b;
+    std::vector<float> voxels = a.volume->voxels();
+    voxels[(std::size_t(z) * dims.y + 5) * dims.x + 3] = 0.5f * (a.volume->info().minValue + a.volume->info().maxValue);
+    b.volume = std::make_unique<MemoryVolume>(a.volume->info(), voxels);
+    CHECK(difference(b.describe(), a.describe()).find("volume content") == 0);
+  }
 }
 
 TEST_CASE("job description: each kind of disagreement is named") {

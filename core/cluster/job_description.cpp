@@ -32,42 +32,71 @@ std::string sizeText(const glm::ivec3& d) {
   return text;
 }
 
-std::string pointText(const glm::ivec3& p) {
-  char text[48];
-  std::snprintf(text, sizeof text, "(%d, %d, %d)", p.x, p.y, p.z);
+//! A slice of at most this many voxels is read whole; a larger one, its centre square of that area.
+constexpr std::int64_t kMaxSampledVoxels = std::int64_t(1) << 22;
+//! Slices sampled besides the middle one: one in each of this many equal bands of z.
+constexpr int kSampledBands = 8;
+
+//! The voxels whose checksum stands for the file's content: the middle z slice (for a stack of
+//! images, the middle image) and one slice in each of kSampledBands bands of z, each whole or, when
+//! very large, its central part. Not the whole file: every rank reads this before any brick.
+struct SampledSlices {
+  std::vector<int> z;  //!< ascending
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  //!< [x0, x1) x [y0, y1) of each
+};
+
+SampledSlices sampledSlices(const glm::ivec3& dims) {
+  SampledSlices s;
+  s.z.push_back(dims.z / 2);
+  const int bands = std::min(dims.z, kSampledBands);
+  for (int k = 0; k < bands; ++k) s.z.push_back(int((2 * std::int64_t(k) + 1) * dims.z / (2 * bands)));
+  std::sort(s.z.begin(), s.z.end());
+  s.z.erase(std::unique(s.z.begin(), s.z.end()), s.z.end());
+  s.x1 = dims.x, s.y1 = dims.y;
+  const int side = 1 << 11;  // side * side == kMaxSampledVoxels
+  if (std::int64_t(dims.x) * dims.y > kMaxSampledVoxels) {
+    if (dims.x > side) s.x0 = (dims.x - side) / 2, s.x1 = s.x0 + side;
+    if (dims.y > side) s.y0 = (dims.y - side) / 2, s.y1 = s.y0 + side;
+  }
+  return s;
+}
+
+std::string slicesText(const SampledSlices& s, const glm::ivec3& dims) {
+  std::string text = "CRC-32 of the voxels of z slices";
+  for (std::size_t i = 0; i < s.z.size(); ++i) text += (i ? ", " : " ") + std::to_string(s.z[i]);
+  if (s.x0 > 0 || s.x1 < dims.x || s.y0 > 0 || s.y1 < dims.y)
+    text += ", x " + std::to_string(s.x0) + ".." + std::to_string(s.x1 - 1) + ", y " + std::to_string(s.y0) + ".." +
+            std::to_string(s.y1 - 1);
   return text;
 }
 
-//! A slice of at most this many voxels is read whole; a larger one, its centre square of that area.
-constexpr std::int64_t kMaxSampledVoxels = std::int64_t(1) << 22;
-
-//! The box of voxels whose checksum stands for the file's content: the middle z slice (for a
-//! stack of images, the middle image), or its central part when the slice is very large.
-VoxelBox sampledBox(const glm::ivec3& dims) {
-  VoxelBox box{{0, 0, dims.z / 2}, {dims.x, dims.y, dims.z / 2 + 1}};
-  const int side = 1 << 11;  // side * side == kMaxSampledVoxels
-  if (std::int64_t(dims.x) * dims.y > kMaxSampledVoxels)
-    for (int a = 0; a < 2; ++a)
-      if (dims[a] > side) box.lo[a] = (dims[a] - side) / 2, box.hi[a] = box.lo[a] + side;
-  return box;
-}
-
-std::string crc32Text(const unsigned char* bytes, std::size_t size) {
-  uLong crc = crc32(0L, Z_NULL, 0);
+uLong crc32Update(uLong crc, const unsigned char* bytes, std::size_t size) {
   while (size > 0) {  // crc32 takes a uInt length
     const uInt chunk = uInt(std::min<std::size_t>(size, std::size_t(1) << 30));
     crc = crc32(crc, bytes, chunk);
     bytes += chunk, size -= chunk;
   }
+  return crc;
+}
+
+std::string crc32Text(uLong crc) {
   char text[16];
   std::snprintf(text, sizeof text, "%08lx", static_cast<unsigned long>(crc));
   return text;
 }
 
-std::string contentChecksum(const VolumeSource& source, const VoxelBox& box) {
-  std::vector<float> voxels(std::size_t(box.count()));
-  source.read(box, voxels.data());
-  return crc32Text(reinterpret_cast<const unsigned char*>(voxels.data()), voxels.size() * sizeof(float));
+std::string crc32Text(const unsigned char* bytes, std::size_t size) {
+  return crc32Text(crc32Update(crc32(0L, Z_NULL, 0), bytes, size));
+}
+
+std::string contentChecksum(const VolumeSource& source, const SampledSlices& s) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  std::vector<float> voxels(std::size_t(s.x1 - s.x0) * std::size_t(s.y1 - s.y0));
+  for (int z : s.z) {
+    source.read(VoxelBox{{s.x0, s.y0, z}, {s.x1, s.y1, z + 1}}, voxels.data());
+    crc = crc32Update(crc, reinterpret_cast<const unsigned char*>(voxels.data()), voxels.size() * sizeof(float));
+  }
+  return crc32Text(crc);
 }
 
 std::string viewText(const View& v) {
@@ -156,7 +185,7 @@ std::string JobDescription::firstDifference(const JobDescription& reference, con
 JobDescription describeJob(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
                            int nodesPerRank) {
   const VolumeInfo& info = source.info();
-  const VoxelBox sampled = sampledBox(info.dims);
+  const SampledSlices sampled = sampledSlices(info.dims);
   JobDescription d;
   d.fields = {
       {"volume size", sizeText(info.dims)},
@@ -164,8 +193,7 @@ JobDescription describeJob(const VolumeSource& source, const FrameRequest& reque
       {"volume type", info.type},
       {"volume value range", exact(info.minValue) + " " + exact(info.maxValue) + ", " +
                                  std::to_string(info.nonFinite) + " non-finite"},
-      {"volume content (CRC-32 of voxels " + pointText(sampled.lo) + " to " + pointText(sampled.hi - 1) + ")",
-       contentChecksum(source, sampled)},
+      {"volume content (" + slicesText(sampled, info.dims) + ")", contentChecksum(source, sampled)},
       {"image size", std::to_string(request.width) + "x" + std::to_string(request.height)},
       {"view", viewText(request.view)},
       {"transfer function", transferText(request.transfer)},

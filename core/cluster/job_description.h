@@ -29,7 +29,8 @@ struct JobDescription {
 };
 
 //! The volume's header figures (dims, spacing, type, value range) and a CRC-32 of the voxels of
-//! its middle z slice (file content that headers do not show: another time step, another patient),
+//! its middle z slice and of one slice in each eighth of z (file content that headers do not show:
+//! another time step, another patient),
 //! the request (view, size, transfer function, settings) and the options that shape the partition
 //! and the compositing. Not the file's path: hosts may mount the same file at different places.
 JobDescription describeJob(const VolumeSource& source, const FrameRequest& request, const ClusterOptions& options,
