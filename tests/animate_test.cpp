@@ -36,13 +36,6 @@ fs::path workDir() {
 using test::Run;
 using test::runKdswap;
 
-std::string fileBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::vector<nlohmann::json> statsLines(const fs::path& p) {
   std::vector<nlohmann::json> lines;
   std::ifstream in(p);
@@ -193,7 +186,7 @@ TEST_CASE("kdswap animate --resume after an interruption gives the same files as
     char frame[32], phases[32];
     std::snprintf(frame, sizeof frame, "frame_%04d.png", i);
     std::snprintf(phases, sizeof phases, "phases_%04d.png", i);
-    CHECK_MESSAGE(fileBytes(whole / frame) == fileBytes(resumed / frame), frame);
+    CHECK_MESSAGE(test::readFile(whole / frame) == test::readFile(resumed / frame), frame);
     CHECK(fs::exists(resumed / phases));
   }
   const auto lines = statsLines(resumed / "stats.jsonl");

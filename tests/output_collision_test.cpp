@@ -23,13 +23,6 @@ using test::Run;
 using test::runKdswap;
 using test::TempDir;
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 int lineCount(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
 //! Runs kdswap ARGS; the run must fail with exit 2, one line on stderr holding `expected`.
@@ -46,7 +39,7 @@ TEST_CASE("render refuses outputs that would overwrite its input or each other, 
   const TempDir dir;
   const std::string volume = dir.file("in.nrrd");
   REQUIRE(runKdswap("export --dataset phantom:16 --out " + volume).code == 0);
-  const std::string before = readAll(volume);
+  const std::string before = test::readFile(volume);
   const std::string scene = "render --size 16x16 --volume " + volume;
 
   expectRefused(scene + " --out " + dir.file("a.png") + " --stats " + volume, "is an input of this command");
@@ -59,7 +52,7 @@ TEST_CASE("render refuses outputs that would overwrite its input or each other, 
   expectRefused(scene + " --out " + dir.file("a.png") + " --stats " + dir.path.string(), "is a directory");
   expectRefused(scene + " --background none --out " + dir.file("a.jpg"), "no alpha channel");
 
-  CHECK(readAll(volume) == before);
+  CHECK(test::readFile(volume) == before);
   CHECK_FALSE(fs::exists(dir.file("a.png")));  // refused before the render, so nothing written
   CHECK_FALSE(fs::exists(dir.file("a.jpg")));
   // Different files are fine, and a transparent background goes into a PNG.
@@ -74,9 +67,9 @@ TEST_CASE("export may replace its input in place, and names the --range that ren
   const std::string command = std::string(KDSWAP_BINARY_DIR) + "/app/kdswap export --dataset phantom:16 --out " +
                               volume + " > " + note;
   REQUIRE(std::system(command.c_str()) == 0);
-  CHECK(readAll(note).find("render this file with --range 0,1") != std::string::npos);
+  CHECK(test::readFile(note).find("render this file with --range 0,1") != std::string::npos);
   CHECK(runKdswap("export --volume " + volume + " --quantise 8 --out " + volume).code == 0);
-  CHECK(readAll(volume).find("type: uint8") != std::string::npos);
+  CHECK(test::readFile(volume).find("type: uint8") != std::string::npos);
 }
 
 TEST_CASE("animate removes the frames of an earlier, longer run from its folder") {

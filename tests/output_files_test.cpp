@@ -23,13 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 //! Lowers this process's file-size limit for one scope (writes past it fail with EFBIG).
 struct FileSizeLimit {
   rlimit saved{};
@@ -55,7 +48,7 @@ test::Run runLimited(int blocks, const std::string& args, const test::TempDir& s
   const std::string command = "bash -c 'ulimit -f " + std::to_string(blocks) + "; exec " +
                               std::string(KDSWAP_BINARY_DIR) + "/app/kdswap " + args + "' > /dev/null 2> " + err;
   const int status = std::system(command.c_str());
-  return test::Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readAll(err)};
+  return test::Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::readFile(err)};
 }
 
 }  // namespace
@@ -70,12 +63,12 @@ TEST_CASE("a file written past the disk's room fails with its name and the cause
     CHECK_THROWS_WITH_AS(writeFileAtomically(path, std::string(5000, 'x')), doctest::Contains(tooLarge.c_str()), Error);
     CHECK_THROWS_WITH_AS(appendToFile(path, std::string(5000, 'x')), doctest::Contains(failed.c_str()), Error);
   }
-  CHECK(readAll(path).substr(0, 4) == "old\n");
+  CHECK(test::readFile(path).substr(0, 4) == "old\n");
   CHECK(onlyFile(dir.path, "table.csv"));  // no temporary file left behind
   writeFileAtomically(path, "new\n");
-  CHECK(readAll(path) == "new\n");
+  CHECK(test::readFile(path) == "new\n");
   appendToFile(path, "more\n");
-  CHECK(readAll(path) == "new\nmore\n");
+  CHECK(test::readFile(path) == "new\nmore\n");
   CHECK_THROWS_WITH_AS(writeFileAtomically(dir.path.string(), "x"), doctest::Contains("is a directory"), Error);
 }
 
@@ -111,11 +104,11 @@ TEST_CASE("kdswap animate --resume renders again a frame whose file is empty") {
   const std::string args = "animate --dataset phantom:32 --size 48x40 --frames 3 --no-video --out-dir " + dir.path.string();
   REQUIRE(test::runKdswap(args).code == 0);
   const std::string frame = dir.file("frame_0001.png");
-  const std::string before = readAll(frame);
+  const std::string before = test::readFile(frame);
   REQUIRE(!before.empty());
   std::ofstream(frame, std::ios::trunc).close();  // as a full disk or a killed writer leaves it
   REQUIRE(test::runKdswap(args + " --resume").code == 0);
-  CHECK(readAll(frame) == before);
+  CHECK(test::readFile(frame) == before);
   CHECK(readImage(frame).width() == 48);
 }
 
@@ -128,9 +121,9 @@ TEST_CASE("kdswap export past the disk's room exits 2 naming the file, and can r
   CHECK_FALSE(fs::exists(out));
   // The volume read may be the file written: the new one is renamed into place at the end.
   REQUIRE(test::runKdswap("export --dataset phantom:32 --out " + out).code == 0);
-  const std::string before = readAll(out);
+  const std::string before = test::readFile(out);
   REQUIRE(test::runKdswap("export --volume " + out + " --out " + out).code == 0);
-  const std::string after = readAll(out);
+  const std::string after = test::readFile(out);
   CHECK(after.substr(after.size() - 32 * 32 * 32 * 4) == before.substr(before.size() - 32 * 32 * 32 * 4));
   int files = 0;
   for (const auto& entry : fs::directory_iterator(dir.path)) files += entry.path().filename() != "stderr.txt";
