@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/frame_progress.h"
 #include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/cluster/phase_grid.h"
@@ -80,7 +81,11 @@ void run(const RenderOptions& o) {
 
   VirtualCluster cluster(*scene.source, scene.cluster);
   if (scene.fault.armed()) cluster.injectFault(scene.fault);
-  FrameResult frame = cluster.renderFrame(scene.request);
+  FrameResult frame;
+  {
+    const FrameProgress progress(cluster, !o.quiet);
+    frame = cluster.renderFrame(scene.request);
+  }
   writeImage(o.out, frame.image, writeOptions);
   if (!o.quiet) std::printf("%s", formatFrameTable(frame.stats).c_str());
   if (!o.quiet) std::printf("wrote %s\n", o.out.c_str());

@@ -95,3 +95,18 @@ TEST_CASE("an error naming a file with a newline in its name is one line") {
   CHECK(oneLine("a\tb\nc") == "a\\x09b\\x0Ac");
   CHECK(printableText("a\tb\nc") == "a\tb\nc");  // a window keeps its line breaks
 }
+
+TEST_CASE("a long frame shows a progress line on a terminal, and none when stderr is a file") {
+  const TempDir dir;
+  // A message held back 2 s makes the frame long on any machine; `script` gives it a terminal.
+  const std::string render = std::string(KDSWAP_BINARY_DIR) +
+                             "/app/kdswap render --dataset phantom:16 --size 16x16 --nodes 4 "
+                             "--inject-fault delay:1:0:2 --out " + dir.file("a.png");
+  const std::string shown = dir.file("terminal.txt");
+  REQUIRE(std::system(("script -qec '" + render + "' /dev/null > " + shown + " 2>&1").c_str()) == 0);
+  CHECK(test::readFile(shown).find("of 4 nodes rendered") != std::string::npos);
+  const Run plain = runKdswap("render --dataset phantom:16 --size 16x16 --nodes 4 --inject-fault delay:1:0:2 --out " +
+                              dir.file("b.png"));
+  CHECK(plain.code == 0);
+  CHECK(plain.err.find("nodes rendered") == std::string::npos);
+}

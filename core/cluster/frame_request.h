@@ -2,6 +2,7 @@
 // transfer function, render settings). FramePlan: what a node derives from it before rendering.
 #pragma once
 
+#include <atomic>
 #include <string>
 
 #include <glm/vec2.hpp>
@@ -39,6 +40,9 @@ struct FramePlan {
   glm::vec3 spacing;
   const BrickSchedule* bricks = nullptr;  //!< over-decomposition: who renders which brick
   const OcclusionMap* occlusion = nullptr;  //!< cross-brick occlusion culling, when available
+  //! When set, each node adds 1 as its render step ends (before compositing): a progress display
+  //! on a long frame reads it while the nodes work.
+  std::atomic<int>* nodesRendered = nullptr;
   Rect frame() const { return camera.frame(); }
 };
 

@@ -254,6 +254,8 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
                 ": each side must be between 1 and 16384");
   const double start = nowSeconds();
   FramePlan plan(request, tree_, info_.spacing, resolveValueRange(request.settings, info_), *strategy_);
+  nodesRendered_ = 0;
+  plan.nodesRendered = &nodesRendered_;
   std::optional<OcclusionMap> occlusion;
   // Culling never moves an image away from the single-node one (with --ert 1 it changes nothing;
   // with early termination it removes light that local termination keeps): it saves work, and

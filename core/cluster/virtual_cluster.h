@@ -4,6 +4,7 @@
 // count neither deadlocks nor oversubscribes threads.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -109,6 +110,9 @@ class VirtualCluster {
   const VolumeInfo& info() const { return info_; }
   const ClusterOptions& options() const { return options_; }
   double distributeSeconds() const { return distributeSeconds_; }
+  //! Nodes whose render step of the current (or last) frame has ended; any thread may read it
+  //! while renderFrame runs, to show progress.
+  int nodesRendered() const { return nodesRendered_.load(std::memory_order_relaxed); }
 
  private:
   InprocCommunicator::SendFilter faultFilter(int rank);
@@ -141,6 +145,7 @@ class VirtualCluster {
   const OcclusionGrid& occlusionGridFor(const TransferTable& table, float scale, float bias, float stopAt);
   OcclusionGridCache occlusionGrid_;
   CullingRest cullingRest_;  //!< occlusion culling rests where its map saved little
+  std::atomic<int> nodesRendered_{0};
   FaultPlan fault_;  //!< armed for the next frame only
 };
 
