@@ -178,6 +178,7 @@ void run(const BenchOptions& o) {
   if (int(o.micro) + int(o.paper) + int(o.targets) > 1) throw Error("give at most one of --micro, --paper, --targets");
   if (!o.vtkMs.empty() && !o.targets) throw Error("--vtk-ms goes with --targets");
   if (o.repeat != 1 && !o.targets) throw Error("--repeat goes with --targets");
+  if (o.headGiven && !o.targets) throw Error("--head goes with --targets");
   if (o.repeat < 1 || o.repeat > 20) throw Error("--repeat must be from 1 to 20");
   gStop.store(false);
   auto previous = std::signal(SIGINT, onBenchInterrupt);

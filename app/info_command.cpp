@@ -69,12 +69,19 @@ RawLayout rawLayout(const InfoOptions& o) {
   }
   if (o.rawSkip < 0) throw Error("--raw-skip " + std::to_string(o.rawSkip) + ": expected a number of bytes >= 0");
   layout.headerBytes = std::uint64_t(o.rawSkip);
+  layout.rawOptions = true;
   return layout;
 }
 
 void runInfo(const InfoOptions& o) {
   if (o.file.empty() == o.dataset.empty()) throw Error("info: give either a volume FILE or --dataset NAME[:SIZE]");
   if (o.bins < 1 || o.bins > 1024) throw Error("--bins " + std::to_string(o.bins) + ": expected 1 to 1024");
+  // The --raw-* options describe a file: with a data set they would be silently ignored.
+  if (!o.dataset.empty())
+    for (const auto& [option, given] : {std::pair{"--raw-dims", !o.rawDims.empty()}, {"--raw-type", !o.rawType.empty()},
+                                        {"--raw-endian", !o.rawEndian.empty()}, {"--raw-spacing", !o.rawSpacing.empty()},
+                                        {"--raw-skip", o.rawSkip != 0}})
+      if (given) throw Error(std::string(option) + " describes a raw volume file; it does not apply to --dataset " + o.dataset);
   const std::unique_ptr<VolumeSource> source = o.file.empty() ? openDataset(o.dataset) : openVolumeFile(o.file, rawLayout(o));
   const VolumeSummary summary = summarizeVolume(*source, o.bins);
   if (o.json)

@@ -156,7 +156,7 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
       ->check(nonEmpty());
   cmd->add_option("--raw-dims", o.rawDims, "Raw files: dimensions WxHxD");
   cmd->add_option("--raw-type", o.rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
-  cmd->add_option("--raw-endian", o.rawEndian, "Raw files: little or big")->capture_default_str();
+  cmd->add_option("--raw-endian", o.rawEndian, "Raw files: little (default) or big")->check(nonEmpty());
   cmd->add_option("--raw-spacing", o.rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
   cmd->add_option("--spacing", o.spacing,
                   "Voxel spacing SX,SY,SZ instead of the data's, for any volume (e.g. 1,1,1 to compare with "
@@ -232,9 +232,23 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
       ->group("Testing");
 }
 
+namespace {
+
+//! The --raw-* options describe a --volume file: with a data set they would be silently ignored.
+void checkNoRawLayout(const std::string& dataset, const SceneOptions& o) {
+  const std::pair<const char*, const std::string*> raw[] = {
+      {"--raw-dims", &o.rawDims}, {"--raw-type", &o.rawType}, {"--raw-endian", &o.rawEndian}, {"--raw-spacing", &o.rawSpacing}};
+  for (const auto& [option, value] : raw)
+    if (!value->empty())
+      throw Error(std::string(option) + " describes a raw --volume file; it does not apply to --dataset " + dataset);
+}
+
+}  // namespace
+
 Scene buildScene(const SceneOptions& o) {
   Scene scene;
   if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
+  if (o.volume.empty()) checkNoRawLayout(o.dataset.empty() ? kDefaultDataset + std::string(" (the default)") : o.dataset, o);
   if (!o.volume.empty()) {
     RawLayout layout;
     if (!o.rawDims.empty()) {
@@ -246,8 +260,12 @@ Scene buildScene(const SceneOptions& o) {
       layout.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
     }
     if (!o.rawType.empty()) layout.type = o.rawType;
-    if (o.rawEndian != "little" && o.rawEndian != "big") throw Error("--raw-endian \"" + o.rawEndian + "\": expected little or big");
-    layout.bigEndian = o.rawEndian == "big";
+    if (!o.rawEndian.empty()) {  // only when given: a header file refuses any raw layout
+      if (o.rawEndian != "little" && o.rawEndian != "big")
+        throw Error("--raw-endian \"" + o.rawEndian + "\": expected little or big");
+      layout.bigEndian = o.rawEndian == "big";
+    }
+    layout.rawOptions = true;
     if (!o.rawSpacing.empty()) {
       const auto s = parseNumbers(o.rawSpacing, ',', "--raw-spacing");
       if (s.size() != 3) throw Error("--raw-spacing \"" + o.rawSpacing + "\": expected SX,SY,SZ");

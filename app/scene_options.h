@@ -19,7 +19,7 @@ namespace kdswap {
 struct SceneOptions {
   std::string dataset;
   std::string volume;
-  std::string rawDims, rawType, rawEndian = "little", rawSpacing;
+  std::string rawDims, rawType, rawEndian, rawSpacing;  //!< empty: not given (a header file refuses them)
   std::string spacing;  //!< overrides the data's voxel spacing (any volume or data set)
   std::string size = "512x512";
   std::string view = "30,15";

@@ -20,6 +20,9 @@ struct RawLayout {
   std::optional<bool> bigEndian;
   std::optional<glm::vec3> spacing;
   std::uint64_t headerBytes = 0;    //!< bytes to skip at the start
+  //! The command has --raw-dims and --raw-type: a missing layout names them, else only the file-name
+  //! pattern and a header describe a raw file. Not part of the layout itself.
+  bool rawOptions = false;
 };
 
 class Reader {

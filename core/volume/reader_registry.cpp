@@ -59,9 +59,9 @@ std::unique_ptr<VolumeSource> openVolumeFile(const std::string& path, const RawL
     }
   // A layout given on the command line means "read this as raw", whatever the extension, except for
   // the formats whose header gives the layout: reading that header as voxels is never meant.
-  if (layout.dims || layout.type || layout.spacing || layout.headerBytes > 0) {
+  if (layout.dims || layout.type || layout.bigEndian || layout.spacing || layout.headerBytes > 0) {
     if (reader && reader->name() != "raw")
-      throw Error(path + ": a raw layout (dimensions, type, spacing or skip from the command line) applies only to raw "
+      throw Error(path + ": a raw layout (dimensions, type, byte order, spacing or skip from the command line) applies only to raw "
                   "files: this is a " + formatTitle(reader->name()) + " file, whose header gives its own layout");
     if (layout.dims || layout.type) return RawReader().open(path, layout);
   }

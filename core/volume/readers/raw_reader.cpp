@@ -32,6 +32,18 @@ NamedLayout layoutFromName(const std::string& path) {
   return named;
 }
 
+//! What is missing and the ways to give it with the command at hand.
+std::string missingLayout(bool noDims, bool noType, bool rawOptions) {
+  const std::string types = "TYPE: " + scalarTypeList();
+  const std::string name = "NAME_WxHxD_TYPE.raw, e.g. head_256x256x113_uint16.raw (" + types + ")";
+  if (!rawOptions)  // bench, export, the GUI: no --raw-* options
+    return std::string(noDims && noType ? "no dimensions and no sample type" : noDims ? "no dimensions" : "no sample type") +
+           ": rename it " + name + ", or describe it with a .nhdr header";
+  if (noDims && noType) return "give --raw-dims WxHxD and --raw-type TYPE, or name it " + name;
+  if (noDims) return "--raw-dims WxHxD is missing (--raw-type alone is not enough)";
+  return "--raw-type TYPE is missing (" + types + ")";
+}
+
 }  // namespace
 
 bool RawReader::accepts(const std::string& path) const {
@@ -40,9 +52,8 @@ bool RawReader::accepts(const std::string& path) const {
 
 std::unique_ptr<VolumeSource> RawReader::open(const std::string& path, const RawLayout& layout) const {
   const NamedLayout named = layoutFromName(path);
-  if ((!layout.dims && named.sizes.empty()) || (!layout.type && named.type.empty()))
-    throw Error(path + ": raw file layout unknown: expected dimensions and type on the command line or a name like "
-                "NAME_WxHxD_TYPE.raw (foot_256x256x256_uint8.raw)");
+  const bool noDims = !layout.dims && named.sizes.empty(), noType = !layout.type && named.type.empty();
+  if (noDims || noType) throw Error(path + ": raw file layout unknown: " + missingLayout(noDims, noType, layout.rawOptions));
   VolumeInfo info;
   info.name = path;
   info.dims = layout.dims ? dimsFromSizes({layout.dims->x, layout.dims->y, layout.dims->z}, path, "dimensions")

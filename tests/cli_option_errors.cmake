@@ -1,0 +1,58 @@
+# Command-line mistakes a user makes, and what kdswap answers: exit 2 and one line naming the option
+# or file and the problem (STYLE.md's errors), never a silent success or a library's message. Each
+# case runs tests/cli_expect.cmake; inputs (plain.raw, bad.json, header.nhdr) are made in WORK.
+set(_cliWork ${CMAKE_CURRENT_BINARY_DIR}/cli_option_errors)
+set(_tiny --dataset phantom:16 --size 16x16 --out o.png)
+set(_benchTiny --dataset phantom:16 --sizes 16 --nodes 1 --frames 1)
+
+# kdswap_cli_case(NAME [PROGRAM target] [CODE n] [EXPECT stderr-regex] [STDOUT regex] [FORBID regex]
+#                 ARGS ...). Regexes are CMake's; write '.' for a quote or a semicolon.
+function(kdswap_cli_case name)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "PROGRAM;CODE;EXPECT;STDOUT;FORBID" "ARGS")
+  if(NOT arg_PROGRAM)
+    set(arg_PROGRAM kdswap)
+  endif()
+  set(_cmd $<TARGET_FILE:${arg_PROGRAM}> ${arg_ARGS})
+  string(REPLACE ";" "\\;" _cmd "${_cmd}")
+  set(_defs)  # the command goes straight into add_test: one more list level would split it
+  foreach(_key CODE EXPECT STDOUT FORBID)
+    if(DEFINED arg_${_key})
+      list(APPEND _defs "-D${_key}=${arg_${_key}}")
+    endif()
+  endforeach()
+  add_test(NAME cli.${name} COMMAND ${CMAKE_COMMAND} -DCMD=${_cmd} -DWORK=${_cliWork}/${name} ${_defs}
+           -P ${CMAKE_CURRENT_SOURCE_DIR}/cli_expect.cmake)
+endfunction()
+
+# A header file gives its own layout: --raw-endian is refused like --raw-dims (its default is no
+# byte order given), and any --raw-* option with a data set, which has no raw file to describe.
+set(_headerRefused "header.nhdr: a raw layout \\(dimensions, type, byte order, spacing or skip")
+kdswap_cli_case(RenderRawEndianOnAHeaderFileIsRefused EXPECT "${_headerRefused}"
+                ARGS render --volume header.nhdr --raw-endian big --size 16x16 --out o.png)
+kdswap_cli_case(InfoRawEndianOnAHeaderFileIsRefused EXPECT "${_headerRefused}"
+                ARGS info --raw-endian big header.nhdr)
+kdswap_cli_case(RenderRawDimsWithADatasetAreRefused
+                EXPECT "--raw-dims describes a raw --volume file. it does not apply to --dataset phantom:16"
+                ARGS render ${_tiny} --raw-dims 66x66x66)
+kdswap_cli_case(InfoRawTypeWithADatasetIsRefused
+                EXPECT "--raw-type describes a raw volume file. it does not apply to --dataset phantom:16"
+                ARGS info --dataset phantom:16 --raw-type uint8)
+kdswap_cli_case(BenchHeadWithoutTargetsIsRefused EXPECT "kdswap: --head goes with --targets"
+                ARGS bench ${_benchTiny} --head /nonexistent/head.nhdr --out-dir b)
+
+# A raw file without a layout: the message says what is missing and how to give it with the
+# command at hand (bench and export have no --raw-* options).
+set(_byName "no dimensions and no sample type: rename it NAME_WxHxD_TYPE.raw, e.g. head_256x256x113_uint16.raw .TYPE: int8 uint8")
+kdswap_cli_case(BenchRawFileWithoutLayoutNamesTheFileNamePattern EXPECT "plain.raw: raw file layout unknown: ${_byName}.*\\.nhdr header"
+                FORBID "--raw|command line" ARGS bench --volume plain.raw --sizes 16 --nodes 1 --frames 1 --out-dir b)
+kdswap_cli_case(ExportRawFileWithoutLayoutNamesTheFileNamePattern EXPECT "plain.raw: raw file layout unknown: ${_byName}"
+                FORBID "--raw|command line" ARGS export --volume plain.raw --out x.nrrd)
+kdswap_cli_case(RenderRawDimsWithoutRawTypeSaysTheTypeIsMissing
+                EXPECT "plain.raw: raw file layout unknown: --raw-type TYPE is missing .TYPE: int8 uint8 "
+                ARGS render --volume plain.raw --raw-dims 66x66x66 --size 16x16 --out o.png)
+kdswap_cli_case(RenderRawTypeWithoutRawDimsSaysTheDimensionsAreMissing
+                EXPECT "plain.raw: raw file layout unknown: --raw-dims WxHxD is missing"
+                ARGS render --volume plain.raw --raw-type uint8 --size 16x16 --out o.png)
+kdswap_cli_case(InfoRawFileWithoutLayoutNamesBothOptions
+                EXPECT "plain.raw: raw file layout unknown: give --raw-dims WxHxD and --raw-type TYPE, or name it NAME_WxHxD_TYPE.raw"
+                ARGS info plain.raw)
