@@ -141,7 +141,9 @@ void runGrid(const BenchOptions& o) {
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   const VolumeInfo& info = source->info();
   g.base.transfer = transfer ? *transfer : loadTransferFunction(info.preset.empty() ? "grayscale" : info.preset);
-  std::filesystem::create_directories(o.outDir);
+  std::error_code ec;
+  std::filesystem::create_directories(o.outDir, ec);
+  if (ec) throw Error("--out-dir " + o.outDir + ": cannot create the folder (" + ec.message() + ")");
 
   const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
   std::fprintf(stderr, "\n");

@@ -56,3 +56,12 @@ kdswap_cli_case(RenderRawTypeWithoutRawDimsSaysTheDimensionsAreMissing
 kdswap_cli_case(InfoRawFileWithoutLayoutNamesBothOptions
                 EXPECT "plain.raw: raw file layout unknown: give --raw-dims WxHxD and --raw-type TYPE, or name it NAME_WxHxD_TYPE.raw"
                 ARGS info plain.raw)
+
+# Failures that used to print a library's text.
+kdswap_cli_case(BenchOutDirThatCannotBeMadeIsOneLineNamingTheOption
+                EXPECT "kdswap: --out-dir /proc/kdswap-no-such-folder: cannot create the folder \\("
+                FORBID "unexpected error|filesystem error"
+                ARGS bench ${_benchTiny} --out-dir /proc/kdswap-no-such-folder)
+kdswap_cli_case(TransferFunctionThatIsNotJsonNamesTheFileAndPosition
+                EXPECT "bad.json: not valid JSON: parse error at line 2, column 13: syntax error while parsing value - invalid literal. last read: '[^']*\\\\xC3'"
+                FORBID "json.exception" ARGS render ${_tiny} --tf bad.json)

@@ -10,6 +10,7 @@
 
 #include "core/util/error.h"
 #include "core/util/file_writer.h"
+#include "core/util/json_error.h"
 
 namespace kdswap {
 namespace fs = std::filesystem;
@@ -53,7 +54,7 @@ TransferFunction loadTransferFunction(const std::string& presetOrPath) {
   try {
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string() + ": not valid JSON: " + e.what());
+    throw Error(path.string() + ": not valid JSON: " + jsonErrorText(e));
   }
   TransferFunction tf = TransferFunction::fromJson(j, path.string());
   return tf;
