@@ -106,7 +106,7 @@ void runGrid(const BenchOptions& o) {
   g.sizes = parseList<int>(o.sizes, "--sizes", 1, 16384);
   g.nodes = parseList<int>(o.nodes, "--nodes", 1, kMaxNodes);
   g.strategies = parseNames(o.composite, "--composite");
-  for (const std::string& s : g.strategies) createStrategy(s);  // unknown names fail before any work
+  for (const std::string& s : g.strategies) checkStrategyName(s);  // unknown names fail before any work
   g.frames = o.frames;
   if (!std::isfinite(o.degrees) || std::abs(o.degrees) > 360.0f)
     throw Error("--degrees must be a number from -360 to 360");
@@ -118,7 +118,7 @@ void runGrid(const BenchOptions& o) {
   g.base.settings.stepVoxels = o.step;
   g.base.settings.shading = parseOnOff(o.shading, "--shading");
   g.base.settings.earlyTermination = o.ert;
-  g.cluster.partition = parsePartition(o.partition);
+  g.cluster.partition = parsePartition(o.partition, "--partition");
   g.cluster.composite.sparse = o.sparse;
   checkThreads(o.threads);
   g.cluster.threads = o.threads;
@@ -261,17 +261,24 @@ void addBenchCommand(CLI::App& app) {
       ->check(nonEmpty());
   cmd->add_option("--volume", o->volume, "Volume file instead of a data set")->check(nonEmpty());
   cmd->add_option("--spacing", o->spacing, "Voxel spacing SX,SY,SZ instead of the data's (e.g. 1,1,1)")->check(nonEmpty());
-  cmd->add_option("--quantise", o->quantise, "Round the data to 8 or 16 bits first (0: as stored)");
+  cmd->add_option("--quantise", o->quantise, "Round the data to 8 or 16 bits first (0: as stored)")
+      ->check(wholeNumber());
   cmd->add_option("--sizes", o->sizes, "Square image sides, comma-separated, each 1..16384")->capture_default_str();
   cmd->add_option("--nodes", o->nodes, "Node counts, comma-separated, each 1..4096")->capture_default_str();
   cmd->add_option("--composite", o->composite, "Strategies, comma-separated")->capture_default_str();
-  cmd->add_option("--frames", o->frames, "Measured frames per cell, 1..1000 (one warm-up frame more)")->capture_default_str();
-  cmd->add_option("--degrees", o->degrees, "Azimuth turn per frame, -360..360 degrees")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "Measured frames per cell, 1..1000 (one warm-up frame more)")
+      ->check(wholeNumber())
+      ->capture_default_str();
+  cmd->add_option("--degrees", o->degrees, "Azimuth turn per frame, -360..360 degrees")
+      ->check(number())
+      ->capture_default_str();
   cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION in degrees (elevation in (-90, 90))")
       ->capture_default_str();
-  cmd->add_option("--step", o->step, "Sample spacing in voxels, 0.01..16")->capture_default_str();
+  cmd->add_option("--step", o->step, "Sample spacing in voxels, 0.01..16")->check(number())->capture_default_str();
   cmd->add_option("--shading", o->shading, "on or off")->capture_default_str();
-  cmd->add_option("--ert", o->ert, "Early ray termination threshold, in (0, 1] (1 disables)")->capture_default_str();
+  cmd->add_option("--ert", o->ert, "Early ray termination threshold, in (0, 1] (1 disables)")
+      ->check(number())
+      ->capture_default_str();
   cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)")->check(nonEmpty());
   cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
@@ -287,7 +294,9 @@ void addBenchCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--voxels", o->voxels, "Voxel storage: auto (compact above 2^23 voxels), float or compact")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Worker threads, 0..1024 (0 = every core)")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Worker threads, 0..1024 (0 = every core)")
+      ->check(wholeNumber())
+      ->capture_default_str();
   cmd->add_option("--out-dir", o->outDir, "Folder for bench.csv, bench.json, speedup.png")
       ->check(nonEmpty())
       ->capture_default_str();
@@ -302,6 +311,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat,
                   "With --targets: run them all N times (1..20) and judge each by the median over the runs "
                   "(this machine's speed drifts between minutes)")
+      ->check(wholeNumber())
       ->capture_default_str();
   cmd->add_option("--vtk-ms", o->vtkMs,
                   "With --targets: VTK's times on this machine for turbulence, phantom and CT head "

@@ -1,7 +1,9 @@
 // `kdswap info`: describe a volume file or built-in data set (dims, type, spacing, range,
 // histogram, memory), as text or JSON. The numbers come from core/volume/volume_summary.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -107,8 +109,9 @@ void addInfoCommand(CLI::App& app) {
   cmd->add_option("--raw-type", options->rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
   cmd->add_option("--raw-endian", options->rawEndian, "Raw files: little (default) or big");
   cmd->add_option("--raw-spacing", options->rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
-  cmd->add_option("--raw-skip", options->rawSkip, "Raw files: header bytes to skip");
-  cmd->add_option("--bins", options->bins, "Histogram bins, 1..1024")->capture_default_str();
+  cmd->add_option("--raw-skip", options->rawSkip, "Raw files: header bytes to skip")
+      ->check(wholeNumber(std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max()));
+  cmd->add_option("--bins", options->bins, "Histogram bins, 1..1024")->check(wholeNumber())->capture_default_str();
   cmd->add_flag("--json", options->json, "Print JSON: dims, type, spacing, range, histogram, bytes");
   cmd->callback([options] { runInfo(*options); });
 }

@@ -1,11 +1,15 @@
 // Shared scene options: parsing and validation into a Scene.
 #include "app/scene_options.h"
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <vector>
 
+#include "core/composite/registry.h"
 #include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
@@ -51,6 +55,33 @@ CLI::Validator nonEmpty() {
                         "", "non-empty");
 }
 
+CLI::Validator number() {
+  return CLI::Validator(
+      [](const std::string& value) {
+        char* end = nullptr;
+        const double v = std::strtod(value.c_str(), &end);
+        if (value.empty() || end != value.c_str() + value.size()) return "\"" + value + "\" is not a number";
+        if (!std::isfinite(v)) return "\"" + value + "\" is not a finite number";
+        return std::string();
+      },
+      "", "number");
+}
+
+CLI::Validator wholeNumber(std::int64_t min, std::int64_t max) {
+  return CLI::Validator(
+      [min, max](const std::string& value) {
+        const std::size_t start = !value.empty() && (value[0] == '-' || value[0] == '+') ? 1 : 0;
+        if (value.size() == start || value.find_first_not_of("0123456789", start) != std::string::npos)
+          return "\"" + value + "\" is not a whole number";
+        // Out of range, not clamped: CLI11 alone reads 20 digits into an int64 as 2^63 - 1.
+        errno = 0;
+        const long long v = std::strtoll(value.c_str(), nullptr, 10);
+        if (errno == ERANGE || v < min || v > max) return "\"" + value + "\" is out of range";
+        return std::string();
+      },
+      "", "whole number");
+}
+
 glm::vec2 parseViewAngles(const std::string& text, const std::string& option) {
   const auto angles = parseNumbers(text, ',', option);
   if (angles.size() != 2) throw Error(option + " \"" + text + "\": expected AZIMUTH,ELEVATION in degrees");
@@ -92,6 +123,14 @@ void checkErt(float ert, const std::string& option) {
 
 void checkThreads(int threads, const std::string& option) {
   if (threads < 0 || threads > 1024) throw Error(option + " " + std::to_string(threads) + ": must be from 0 to 1024");
+}
+
+void checkStrategyName(const std::string& name, const std::string& option) {
+  const std::vector<std::string> names = strategyNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
+  std::string valid;
+  for (const std::string& n : names) valid += (valid.empty() ? "" : ", ") + n;
+  throw Error(option + " \"" + name + "\": expected one of " + valid);
 }
 
 std::vector<double> parseSpeeds(const std::string& text, const std::string& option) {
@@ -167,26 +206,31 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
       ->check(nonEmpty())
       ->capture_default_str();
   cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii, in (0, 1000); the default shows the whole volume")
+      ->check(number())
       ->capture_default_str();
   cmd->add_option("--fov", o.fov, "Vertical field of view, 1..170 degrees (orthographic: sets the frame size)")
+      ->check(number())
       ->capture_default_str();
   cmd->add_option("--projection", o.projection, "perspective or orthographic")->capture_default_str();
   cmd->add_option("--up", o.up, "Volume axis pointing up on screen: +x -x +y -y +z -z")->capture_default_str();
   cmd->add_option("--step", o.step, "Sample spacing in voxels, 0.01..16 (global lattice; opacity is corrected for it)")
+      ->check(number())
       ->capture_default_str();
   cmd->add_option("--tf", o.tf, "Transfer function: a preset name (see assets/presets) or a JSON file "
                                 "(kdswap or ParaView colour map). Default: the data set's preset")
       ->check(nonEmpty());
   cmd->add_option("--shading", o.shading, "Phong shading from precomputed gradients: on or off")->capture_default_str();
   cmd->add_option("--jitter", o.jitter, "Per-ray lattice phase against ring artefacts: on or off")->capture_default_str();
-  cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold, in (0, 1] (1 disables)")->capture_default_str();
+  cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold, in (0, 1] (1 disables)")
+      ->check(number())
+      ->capture_default_str();
   cmd->add_option("--range", o.range,
                   "Scalar range MIN,MAX mapped to [0,1], finite floats with MIN < MAX (default: the data's range)")
       ->check(nonEmpty());
 }
 
 void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
-  cmd->add_option("--nodes,-n", o.nodes, "Virtual nodes P (1..4096)")->capture_default_str();
+  cmd->add_option("--nodes,-n", o.nodes, "Virtual nodes P (1..4096)")->check(wholeNumber())->capture_default_str();
   cmd->add_option("--composite", o.composite, "Compositing strategy: binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping")
       ->capture_default_str();
   cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
@@ -194,7 +238,7 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--radices", o.radices,
                   "--composite radix-k only: group size of each round, e.g. 4,2 (each 2..4096, product = --nodes; default: prime factors of P in rounds of at most 8, e.g. 64 -> 8,8)")
       ->check(nonEmpty());
-  cmd->add_option("--threads", o.threads, "Worker threads, 0..1024 (0 = every core)")->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads, 0..1024 (0 = every core)")->check(wholeNumber())->capture_default_str();
   cmd->add_option("--balance", o.balance,
                   "Plane placement: space (halve space, as the paper) or cost (balance the work estimated "
                   "from the transfer function: visible blocks cost more than empty ones)")
@@ -206,6 +250,7 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--bricks-per-node", o.bricksPerNode,
                   "Over-decomposition: cut each node's brick into this many (1..64), handed out on demand "
                   "each frame so fast or idle nodes take work from busy ones")
+      ->check(wholeNumber())
       ->capture_default_str();
   cmd->add_option("--network", o.network,
                   "Network model for the modelled time: ideal (no cost), cm5 (CM-5 fat tree: 20/10/5 MB/s), "
@@ -218,6 +263,7 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--stall-timeout", o.stallSeconds,
                   "Abort a frame when nodes wait and no node works or sends for this many seconds, in (0, 86400], naming who waits on whom "
                   "(a long render is never cut short)")
+      ->check(number())
       ->capture_default_str();
   cmd->add_flag("--checksums", o.checksums, "Checksum every message and refuse corrupted ones");
   cmd->add_option("--node-execution", o.nodeExecution,
@@ -287,8 +333,8 @@ Scene buildScene(const SceneOptions& o) {
   r.view.distance = o.distance;
   if (!(o.fov >= 1.0f && o.fov <= 170.0f)) throw Error("--fov must be between 1 and 170 degrees");
   r.view.fovDeg = o.fov;
-  r.view.projection = parseProjection(o.projection);
-  r.view.up = parseUpAxis(o.up);
+  r.view.projection = parseProjection(o.projection, "--projection");
+  r.view.up = parseUpAxis(o.up, "--up");
   checkStep(o.step);
   r.settings.stepVoxels = o.step;
   r.settings.shading = parseOnOff(o.shading, "--shading");
@@ -301,8 +347,9 @@ Scene buildScene(const SceneOptions& o) {
   ClusterOptions& c = scene.cluster;
   c.nodes = o.nodes;
   if (o.nodes < 1 || o.nodes > kMaxNodes) throw Error("--nodes " + std::to_string(o.nodes) + ": must be from 1 to 4096");
+  checkStrategyName(o.composite);
   c.strategy = o.composite;
-  c.partition = parsePartition(o.partition);
+  c.partition = parsePartition(o.partition, "--partition");
   c.composite.sparse = o.sparse;
   // Only radix-k reads them: with another strategy they would be silently ignored.
   if (!o.radices.empty() && o.composite != "radix-k")
@@ -344,9 +391,19 @@ Scene buildScene(const SceneOptions& o) {
     if (parts.size() < 2 || parts.size() > 4) throw Error("--inject-fault \"" + o.injectFault + "\": expected KIND:NODE[:MESSAGE[:DELAY_S]]");
     scene.fault.kind = parseFaultKind(parts[0]);
     const auto numbers = parseNumbers(o.injectFault.substr(parts[0].size() + 1), ':', "--inject-fault");
+    if (!(numbers[0] >= 0 && numbers[0] < c.nodes) || numbers[0] != std::floor(numbers[0]))
+      throw Error("--inject-fault: node must be from 0 to " + std::to_string(c.nodes - 1));
     scene.fault.node = int(numbers[0]);
-    if (scene.fault.node < 0 || scene.fault.node >= c.nodes) throw Error("--inject-fault: node must be from 0 to " + std::to_string(c.nodes - 1));
-    if (numbers.size() > 1) scene.fault.message = int(numbers[1]);
+    if (numbers.size() > 1) {
+      if (!(numbers[1] >= 0 && numbers[1] <= 1e9) || numbers[1] != std::floor(numbers[1]))
+        throw Error("--inject-fault \"" + o.injectFault + "\": MESSAGE must be a whole number from 0 to 1000000000");
+      scene.fault.message = int(numbers[1]);
+    }
+    // A huge delay overflows the sleep's duration and becomes no delay at all.
+    constexpr double kMaxFaultDelaySeconds = 3600;
+    if (numbers.size() > 2 && !(numbers[2] >= 0 && numbers[2] <= kMaxFaultDelaySeconds))
+      throw Error("--inject-fault \"" + o.injectFault + "\": DELAY_S must be from 0 to " +
+                  std::to_string(int(kMaxFaultDelaySeconds)) + " seconds");
     if (numbers.size() > 2) scene.fault.delaySeconds = numbers[2];
     if (scene.fault.kind == FaultPlan::Kind::CorruptMessage) c.checksums = true;
   }

@@ -2,6 +2,8 @@
 // transfer function and render settings, and the virtual cluster. Parsed once into a Scene.
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -75,6 +77,12 @@ std::vector<double> parseNumbers(const std::string& text, char separator, const 
 
 //! A CLI11 check refusing an empty value: `--volume ""` is a mistake, not "the default".
 CLI::Validator nonEmpty();
+//! CLI11 checks for numeric options: `--step: "abc" is not a number` instead of CLI11's "Could not
+//! convert". They refuse only what the option's type cannot hold; ranges stay with each option.
+CLI::Validator number();  //!< a finite decimal number
+//! Digits with an optional sign, from `min` to `max` (by default an int's range).
+CLI::Validator wholeNumber(std::int64_t min = std::numeric_limits<int>::min(),
+                           std::int64_t max = std::numeric_limits<int>::max());
 //! "AZIMUTH,ELEVATION" in degrees: azimuth any finite float, elevation in (-90, 90).
 glm::vec2 parseViewAngles(const std::string& text, const std::string& option);
 //! "MIN,MAX" mapped to [0, 1]: finite floats whose difference and its reciprocal are finite.
@@ -84,6 +92,8 @@ bool parseOnOff(const std::string& text, const std::string& option);
 void checkStep(float step, const std::string& option = "--step");        //!< 0.01..16 voxels
 void checkErt(float ert, const std::string& option = "--ert");           //!< (0, 1]
 void checkThreads(int threads, const std::string& option = "--threads");  //!< 0..1024
+//! A registered compositing strategy (core/composite/registry.cpp); the error lists them.
+void checkStrategyName(const std::string& name, const std::string& option = "--composite");
 //! "1,0.5,..." each from 0.01 to 100; "" -> {}.
 std::vector<double> parseSpeeds(const std::string& text, const std::string& option = "--speeds");
 //! A preset name or a JSON file; a folder is named as one (loadTransferFunction would call it missing).

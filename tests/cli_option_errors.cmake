@@ -65,3 +65,32 @@ kdswap_cli_case(BenchOutDirThatCannotBeMadeIsOneLineNamingTheOption
 kdswap_cli_case(TransferFunctionThatIsNotJsonNamesTheFileAndPosition
                 EXPECT "bad.json: not valid JSON: parse error at line 2, column 13: syntax error while parsing value - invalid literal. last read: '[^']*\\\\xC3'"
                 FORBID "json.exception" ARGS render ${_tiny} --tf bad.json)
+
+# Values out of range are refused, not clamped or wrapped.
+kdswap_cli_case(InjectedDelayAboveAnHourIsRefused
+                EXPECT "--inject-fault .delay:1:0:1e300.: DELAY_S must be from 0 to 3600 seconds"
+                ARGS render ${_tiny} --nodes 4 --inject-fault delay:1:0:1e300)
+kdswap_cli_case(RawSkipBeyond64BitsIsRefused EXPECT "--raw-skip: .99999999999999999999. is out of range"
+                ARGS info --raw-skip 99999999999999999999 --raw-dims 2x2x2 --raw-type uint8 plain.raw)
+
+# Every error names its option; a node is named once.
+kdswap_cli_case(UnknownCompositeNamesTheOption
+                EXPECT "kdswap: --composite .foo.: expected one of binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping"
+                ARGS render ${_tiny} --composite foo)
+kdswap_cli_case(BenchUnknownCompositeNamesTheOption EXPECT "kdswap: --composite .foo.: expected one of binary-swap"
+                ARGS bench ${_benchTiny} --composite binary-swap,foo --out-dir b)
+kdswap_cli_case(UnknownPartitionNamesTheOption EXPECT "kdswap: --partition .oct.: expected kd or slab"
+                ARGS render ${_tiny} --partition oct)
+kdswap_cli_case(UnknownProjectionNamesTheOption EXPECT "kdswap: --projection .fisheye.: expected perspective or orthographic"
+                ARGS render ${_tiny} --projection fisheye)
+kdswap_cli_case(UnknownUpAxisNamesTheOption EXPECT "kdswap: --up .\\+w.: expected one of \\+x -x \\+y -y \\+z -z"
+                ARGS render ${_tiny} --up +w)
+kdswap_cli_case(CorruptedMessageNamesTheReceivingNodeOnce
+                EXPECT "kdswap: node [0-9]+: message from node 1 \\(tag [0-9]+\\) failed its checksum"
+                FORBID "node [0-9]+: node [0-9]+:" ARGS render ${_tiny} --nodes 4 --inject-fault corrupt:1)
+kdswap_cli_case(StepThatIsNotANumberNamesTheOption EXPECT "kdswap: --step: .abc. is not a number"
+                FORBID "Could not convert" ARGS render ${_tiny} --step abc)
+kdswap_cli_case(NodesThatIsNotAWholeNumberNamesTheOption EXPECT "kdswap: --nodes: .2.5. is not a whole number"
+                ARGS render ${_tiny} --nodes 2.5)
+kdswap_cli_case(BenchFramesThatIsNotAWholeNumberNamesTheOption EXPECT "kdswap: --frames: .x. is not a whole number"
+                ARGS bench --dataset phantom:16 --sizes 16 --nodes 1 --frames x --out-dir b)

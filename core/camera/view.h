@@ -24,8 +24,11 @@ struct View {
   glm::vec2 pan{0.0f};         //!< screen-space shift of the orbit centre, in bounding-sphere radii
 };
 
-Projection parseProjection(const std::string& text);  //!< "perspective" | "orthographic"; throws Error
-UpAxis parseUpAxis(const std::string& text);          //!< "+x" "-x" "+y" "-y" "+z" "-z"; throws Error
+// Each throws Error starting with `what`: a command-line option ("--up") or a file's field.
+//! "perspective" | "orthographic"
+Projection parseProjection(const std::string& text, const std::string& what = "projection");
+//! "+x" "-x" "+y" "-y" "+z" "-z"
+UpAxis parseUpAxis(const std::string& text, const std::string& what = "up axis");
 std::string toString(Projection p);
 std::string toString(UpAxis u);
 

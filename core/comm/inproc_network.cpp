@@ -85,8 +85,9 @@ Message InprocCommunicator::receive(int source, int tag) {
     Message m = network_.mailbox(rank_).take(source, tag, counters_.waitSeconds);
     counters_.bytesReceived += m.bytes();
     ++counters_.messagesReceived;
+    // No "node N: " here: the cluster prefixes every node's error with it (runOnNodes).
     if (m.checksum != 0 && m.checksum != messageChecksum(m))
-      throw Error("node " + std::to_string(rank_) + ": message from " +
+      throw Error("message from " +
                   (m.source < 0 ? std::string("the host") : "node " + std::to_string(m.source)) + " (tag " +
                   std::to_string(m.tag) + ") failed its checksum: corrupted in transit, not composited");
     return m;

@@ -12,10 +12,10 @@
 
 namespace kdswap {
 
-PartitionKind parsePartition(const std::string& text) {
+PartitionKind parsePartition(const std::string& text, const std::string& what) {
   if (text == "kd" || text == "kd-tree" || text == "kdtree") return PartitionKind::KdTree;
   if (text == "slab" || text == "slabs") return PartitionKind::Slab;
-  throw Error("partition \"" + text + "\": expected kd or slab");
+  throw Error(what + " \"" + text + "\": expected kd or slab");
 }
 
 std::string toString(PartitionKind kind) { return kind == PartitionKind::KdTree ? "kd" : "slab"; }

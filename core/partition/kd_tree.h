@@ -32,7 +32,8 @@ namespace kdswap {
 class Camera;
 
 enum class PartitionKind { KdTree, Slab };
-PartitionKind parsePartition(const std::string& text);  //!< "kd" | "slab"; throws Error
+//! "kd" | "slab"; throws Error starting with `what` (a command-line option or a file's field).
+PartitionKind parsePartition(const std::string& text, const std::string& what = "partition");
 std::string toString(PartitionKind kind);
 
 struct KdNode {
