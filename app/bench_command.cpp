@@ -77,8 +77,20 @@ std::vector<std::string> parseNames(const std::string& text, const char* option)
   return out;
 }
 
-void progressLine(const BenchProgress& p) {
+bool stderrIsTerminal() {
   static const bool tty = isatty(2);
+  return tty;
+}
+
+// A terminal shows one line rewritten after every frame; a log (a file, CI) gets a line when a
+// cell starts and when it ends, not one per frame.
+void progressLine(const BenchProgress& p) {
+  const bool tty = stderrIsTerminal();
+  static int lastDone = -1;
+  static std::string lastCurrent;
+  if (!tty && p.cellsDone == lastDone && p.current == lastCurrent) return;
+  lastDone = p.cellsDone;
+  lastCurrent = p.current;
   std::fprintf(stderr, "%s[%d/%d cells] %-32s %5.0f s elapsed, about %.0f s left%s", tty ? "\r" : "", p.cellsDone,
                p.cellsTotal, p.current.c_str(), p.elapsedSeconds, p.remainingSeconds, tty ? "   " : "\n");
 }
@@ -146,7 +158,7 @@ void runGrid(const BenchOptions& o) {
   if (ec) throw Error("--out-dir " + o.outDir + ": cannot create the folder (" + ec.message() + ")");
 
   const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
-  std::fprintf(stderr, "\n");
+  if (stderrIsTerminal()) std::fprintf(stderr, "\n");  // ends the rewritten line
   const VoxelStorage storage = VoxelStorage::forVolume(info, g.cluster.voxels);
   BenchContext ctx{commandLine(o), o.volume.empty() ? (o.dataset.empty() ? kDefaultDataset : o.dataset) : o.volume,
                    info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees,

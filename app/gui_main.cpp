@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/cluster/virtual_cluster.h"
+#include "core/composite/registry.h"
 #include "core/util/error.h"
 #include "core/util/memory.h"
 #include "ui/gui_app.h"
@@ -19,9 +21,12 @@ int main(int argc, char** argv) {
       "image after each compositing phase (the paper's Figure 6), the transfer function and timings.\n"};
   app.add_option("--dataset,-d", o.dataset, "Built-in data set NAME[:SIZE] (phantom, vessels, turbulence) or a volume file")
       ->capture_default_str();
-  app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P")->capture_default_str();
+  app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P, 1.." + std::to_string(kdswap::kMaxNodes))
+      ->capture_default_str();
   app.add_option("--partition", o.partition, "kd or slab")->capture_default_str();
-  app.add_option("--composite", o.composite, "Compositing strategy (binary-swap, ...)")->capture_default_str();
+  std::string strategies;  // the registry's list, so the help names every strategy
+  for (const std::string& name : kdswap::strategyNames()) strategies += (strategies.empty() ? "" : ", ") + name;
+  app.add_option("--composite", o.composite, "Compositing strategy: " + strategies)->capture_default_str();
   app.add_option("--balance", o.balance,
                  "Plane placement: space (halve space) or cost (balance the work the transfer function makes)")
       ->capture_default_str();
@@ -29,7 +34,7 @@ int main(int argc, char** argv) {
                  "Over-decomposition: each node's brick cut into this many (1..64), handed out on demand")
       ->capture_default_str();
   app.add_option("--tf", o.tf, "Transfer-function preset or JSON file (default: the data set's preset)");
-  app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels")->capture_default_str();
+  app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels, 16..4096")->capture_default_str();
   app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();
   app.add_option("--screenshot", o.screenshot,
                  "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed "
@@ -37,7 +42,10 @@ int main(int argc, char** argv) {
   app.add_option("--frames", o.frames, "Exit after N UI frames once the first full frame is shown");
   app.add_option("--layout", o.layout, "With --screenshot: also write where the viewport and stage cells were drawn (JSON)");
   app.add_option("--script", o.script,
-                 "Play synthetic mouse and keyboard input from FILE (commands: see ui/input_script.h), then exit");
+                 "Play synthetic mouse and keyboard input from FILE, then exit. One command a line, # comments: "
+                 "move TARGET; glide DX DY FRAMES; down|up|click left|right|middle; wheel STEPS; key LETTER; "
+                 "frames N; wait full|preview; checkpoint NAME; verify-redraw. TARGET: viewport FX FY (fractions "
+                 "of the image), cell NODE PHASE, tf-point K, at X Y (window pixels)");
   app.add_option("--dump-state", o.dumpState,
                  "At exit write the view, transfer function, layout, frames shown and the script's checkpoints as JSON "
                  "(checkpoint pictures go beside it)");

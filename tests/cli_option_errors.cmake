@@ -94,3 +94,16 @@ kdswap_cli_case(NodesThatIsNotAWholeNumberNamesTheOption EXPECT "kdswap: --nodes
                 ARGS render ${_tiny} --nodes 2.5)
 kdswap_cli_case(BenchFramesThatIsNotAWholeNumberNamesTheOption EXPECT "kdswap: --frames: .x. is not a whole number"
                 ARGS bench --dataset phantom:16 --sizes 16 --nodes 1 --frames x --out-dir b)
+
+# Output for people: grammar, and a log without one line per frame.
+kdswap_cli_case(RenderSummaryOfOneNodeSaysNode CODE 0 STDOUT "^1 node, 16x16, binary-swap" ARGS render ${_tiny})
+kdswap_cli_case(BenchProgressInALogHasALineWhenACellStartsAndEnds CODE 0
+                EXPECT "^\\[0/2 cells\\] [^[]*\\[1/2 cells\\] [^[]*\\[1/2 cells\\] [^[]*\\[2/2 cells\\] [^[]*$"
+                ARGS bench --dataset phantom:16 --sizes 16 --nodes 1,2 --frames 3 --out-dir b)
+
+# The GUI's help is complete without the sources: every strategy, the node range, the script format.
+if(TARGET kdswap-gui)
+  kdswap_cli_case(GuiHelpListsStrategiesNodeRangeAndScriptCommands PROGRAM kdswap-gui CODE 0
+                  STDOUT "P, 1\\.\\.4096.*binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping.*move TARGET. glide DX DY FRAMES"
+                  FORBID "input_script\\.h|binary-swap, \\.\\.\\." ARGS --help)
+endif()

@@ -146,15 +146,15 @@ std::string formatFrameTable(const FrameStats& s) {
   for (const NodeReport& n : s.perNode) privateMax = std::max(privateMax, n.privateBytes);
   char text[1536];
   int n = std::snprintf(text, sizeof text,
-                "%d nodes, %dx%d, %s compositing, %s partition\n"
+                "%d node%s, %dx%d, %s compositing, %s partition\n"
                 "  render     (max over nodes) %9.2f ms\n"
                 "  composite  (max over nodes) %9.2f ms   over %d phase(s)\n"
                 "  modelled parallel time      %9.2f ms   (max render + per-phase max composite)\n"
                 "  wall time, this machine     %9.2f ms   (distribute %.2f ms once, gather %.2f ms)\n"
                 "  samples %llu, rays %llu, bytes sent %s, node memory max %s, peak RSS %s\n",
-                s.nodes, s.width, s.height, s.strategy.c_str(), s.partition.c_str(), s.renderMax() * 1e3,
-                s.compositeMax() * 1e3, s.phaseCount(), s.modelledParallelSeconds() * 1e3, s.wallSeconds * 1e3,
-                s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
+                s.nodes, s.nodes == 1 ? "" : "s", s.width, s.height, s.strategy.c_str(), s.partition.c_str(),
+                s.renderMax() * 1e3, s.compositeMax() * 1e3, s.phaseCount(), s.modelledParallelSeconds() * 1e3,
+                s.wallSeconds * 1e3, s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
                 (unsigned long long)s.rays(), formatBytes(s.bytesSent()).c_str(), formatBytes(privateMax).c_str(),
                 formatBytes(s.peakRssBytes).c_str());
   if (!s.network.ideal() && n > 0 && n < int(sizeof text))
