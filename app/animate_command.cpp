@@ -2,6 +2,7 @@
 // numbered image sequence, with per-frame stats, resume after Ctrl-C, and an MP4 when ffmpeg exists.
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -151,6 +152,7 @@ void run(const AnimateOptions& o) {
     throw Error("--frames " + std::to_string(o.frames) + ": must be from 1 to " + std::to_string(kMaxAnimationFrames));
   if (o.format != "png" && o.format != "exr") throw Error("--format \"" + o.format + "\": expected png or exr");
   if (!(o.fps > 0.0f && o.fps <= 240.0f)) throw Error("--fps must be in (0, 240]");
+  if (!std::isfinite(o.orbit)) throw Error("--orbit: degrees must be a finite number");
   checkOutputFolder(o.outDir, "--out-dir");  // before any frame, not after the first render
   const std::vector<CameraKey> keys = o.keys.empty() ? std::vector<CameraKey>{} : loadCameraKeys(o.keys);
   Scene scene = buildScene(o.scene);

@@ -86,7 +86,7 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   // storage (format, value origin and step, gradient scale) travel as the first payload values.
   if ((m.header.size() != 9 && m.header.size() != 10) || m.payload.size() < kBrickPreamble ||
       (m.payload[3] != 0.0f && m.payload[3] != 1.0f))
-    throw Error("node " + std::to_string(comm.rank()) + ": malformed brick message");
+    throw Error("malformed brick message");
   const VoxelBox owned{glm::ivec3(int(m.header[0]), int(m.header[1]), int(m.header[2])),
                        glm::ivec3(int(m.header[3]), int(m.header[4]), int(m.header[5]))};
   const glm::ivec3 dims(int(m.header[6]), int(m.header[7]), int(m.header[8]));
@@ -96,7 +96,7 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   storage.valueOrigin = m.payload[4], storage.valueStep = m.payload[5], storage.gradientScale = m.payload[6];
   m.payload.erase(m.payload.begin(), m.payload.begin() + kBrickPreamble);
   if (Brick::storedBoxFor(owned, dims).count() != std::int64_t(m.payload.size()))
-    throw Error("node " + std::to_string(comm.rank()) + ": brick message holds the wrong number of voxels");
+    throw Error("brick message holds the wrong number of voxels");
   node.rank = comm.rank();
   if (m.header.size() == 10) {
     const int piece = int(m.header[9]);
@@ -135,7 +135,7 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
   for (int brick : s.renders[std::size_t(rank)]) {
     const auto it = node.pieces.find(brick);
     if (it == node.pieces.end())
-      throw Error("node " + std::to_string(rank) + ": was given brick " + std::to_string(brick) + " but does not hold it");
+      throw Error("was given brick " + std::to_string(brick) + " but does not hold it");
     RenderCounters counters;
     const double start = nowSeconds();
     const RayCaster caster(it->second, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
@@ -162,11 +162,11 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
   }
   while (int(mine.size()) < layout.perNode()) {
     Message m = comm.receive(Mailbox::kAnySource, kPieceImageTag);
-    if (m.header.size() != 5) throw Error("node " + std::to_string(rank) + ": malformed brick image");
+    if (m.header.size() != 5) throw Error("malformed brick image");
     const int brick = int(m.header[4]);
     m.header.resize(4);
     if (layout.home(brick) != rank || mine.count(brick))
-      throw Error("node " + std::to_string(rank) + ": unexpected image of brick " + std::to_string(brick));
+      throw Error("unexpected image of brick " + std::to_string(brick));
     mine.emplace(brick, imageFromMessage(m));
   }
   Rect bounds;

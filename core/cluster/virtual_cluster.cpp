@@ -170,7 +170,7 @@ InprocCommunicator::SendFilter VirtualCluster::faultFilter(int rank) {
     const int index = (*sent)++;
     switch (fault.kind) {
       case FaultPlan::Kind::ThrowInComposite:
-        throw Error("injected fault: node " + std::to_string(rank) + " failed while compositing (tag " +
+        throw Error("injected fault: failed while compositing (tag " +
                     std::to_string(m.tag) + ")");
       case FaultPlan::Kind::DropMessage:
         return index != fault.message;
@@ -302,7 +302,7 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   runOnNodes(
       [&](int rank, Communicator& comm) {
         if (fault.kind == FaultPlan::Kind::ThrowInRender && fault.node == rank)
-          throw Error("injected fault: node " + std::to_string(rank) + " failed while rendering");
+          throw Error("injected fault: failed while rendering");  // the frame's error names the node
         reports[std::size_t(rank)] = runNodeFrame(nodes_[std::size_t(rank)], comm, plan, result.phases.get());
       },
       false, {});
