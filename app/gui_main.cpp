@@ -24,9 +24,8 @@ int main(int argc, char** argv) {
   app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P, 1.." + std::to_string(kdswap::kMaxNodes))
       ->capture_default_str();
   app.add_option("--partition", o.partition, "kd or slab")->capture_default_str();
-  std::string strategies;  // the registry's list, so the help names every strategy
-  for (const std::string& name : kdswap::strategyNames()) strategies += (strategies.empty() ? "" : ", ") + name;
-  app.add_option("--composite", o.composite, "Compositing strategy: " + strategies)->capture_default_str();
+  app.add_option("--composite", o.composite, "Compositing strategy: " + kdswap::strategyNameList())
+      ->capture_default_str();
   app.add_option("--balance", o.balance,
                  "Plane placement: space (halve space) or cost (balance the work the transfer function makes)")
       ->capture_default_str();

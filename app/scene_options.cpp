@@ -125,14 +125,6 @@ void checkThreads(int threads, const std::string& option) {
   if (threads < 0 || threads > 1024) throw Error(option + " " + std::to_string(threads) + ": must be from 0 to 1024");
 }
 
-void checkStrategyName(const std::string& name, const std::string& option) {
-  const std::vector<std::string> names = strategyNames();
-  if (std::find(names.begin(), names.end(), name) != names.end()) return;
-  std::string valid;
-  for (const std::string& n : names) valid += (valid.empty() ? "" : ", ") + n;
-  throw Error(option + " \"" + name + "\": expected one of " + valid);
-}
-
 std::vector<double> parseSpeeds(const std::string& text, const std::string& option) {
   const auto speeds = parseNumbers(text, ',', option);
   for (double v : speeds)

@@ -14,6 +14,7 @@
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/transfer/transfer_function.h"
+#include "core/composite/registry.h"  // checkStrategyName
 #include "core/volume/volume_source.h"
 
 namespace kdswap {
@@ -92,8 +93,6 @@ bool parseOnOff(const std::string& text, const std::string& option);
 void checkStep(float step, const std::string& option = "--step");        //!< 0.01..16 voxels
 void checkErt(float ert, const std::string& option = "--ert");           //!< (0, 1]
 void checkThreads(int threads, const std::string& option = "--threads");  //!< 0..1024
-//! A registered compositing strategy (core/composite/registry.cpp); the error lists them.
-void checkStrategyName(const std::string& name, const std::string& option = "--composite");
 //! "1,0.5,..." each from 0.01 to 100; "" -> {}.
 std::vector<double> parseSpeeds(const std::string& text, const std::string& option = "--speeds");
 //! A preset name or a JSON file; a folder is named as one (loadTransferFunction would call it missing).

@@ -74,12 +74,7 @@ void initState(GuiState& state, const GuiOptions& o) {
   state.scene.data = o.dataset;
   state.scene.cluster.nodes = o.nodes;
   state.scene.cluster.partition = parsePartition(o.partition);
-  const std::vector<std::string> strategies = strategyNames();
-  if (std::find(strategies.begin(), strategies.end(), o.composite) == strategies.end()) {
-    std::string valid;
-    for (const std::string& name : strategies) valid += (valid.empty() ? "" : ", ") + name;
-    throw Error("--composite \"" + o.composite + "\": expected one of " + valid);
-  }
+  checkStrategyName(o.composite);
   state.scene.cluster.strategy = o.composite;
   if (o.balance != "space" && o.balance != "cost") throw Error("--balance " + o.balance + ": expected space or cost");
   if (o.bricksPerNode < 1 || o.bricksPerNode > 64)

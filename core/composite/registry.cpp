@@ -46,14 +46,23 @@ std::vector<std::string> strategyNames() {
   return names;
 }
 
+std::string strategyNameList() {
+  std::string list;
+  for (const std::string& n : strategyNames()) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+void checkStrategyName(const std::string& name, const std::string& what) {
+  const std::vector<std::string> names = strategyNames();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw Error(what + " \"" + name + "\": expected one of " + strategyNameList());
+}
+
 std::unique_ptr<Strategy> createStrategy(const std::string& name, const CompositeOptions& options) {
   const auto& list = factories();
   auto it = std::find_if(list.begin(), list.end(), [&](const auto& entry) { return entry.first == name; });
-  if (it == list.end()) {
-    std::string valid;
-    for (const std::string& n : strategyNames()) valid += (valid.empty() ? "" : ", ") + n;
-    throw Error("compositing strategy \"" + name + "\": unknown (valid: " + valid + ")");
-  }
+  if (it == list.end())
+    throw Error("compositing strategy \"" + name + "\": unknown (valid: " + strategyNameList() + ")");
   return it->second(options);
 }
 
