@@ -12,7 +12,7 @@
 #include "core/util/printable_text.h"
 
 int main(int argc, char** argv) {
-  kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
+  kdswap::configureMalloc();  // before any thread allocates (core/util/memory.h)
   kdswap::GuiOptions o;
   std::string windowSize = "1600x1000";
   CLI::App app{

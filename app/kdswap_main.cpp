@@ -13,7 +13,7 @@
 using kdswap::oneLine;
 
 int main(int argc, char** argv) {
-  kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
+  kdswap::configureMalloc();  // before any thread allocates (core/util/memory.h)
   CLI::App app{
       "kdswap: data-distributed parallel volume rendering with binary-swap compositing\n"
       "(Ma, Painter, Hansen & Krogh 1993), on P virtual nodes in one process.\n"};

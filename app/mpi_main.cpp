@@ -208,7 +208,7 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
 using kdswap::oneLine;
 
 int main(int argc, char** argv) {
-  kdswap::useOneMallocArena();  // before any thread allocates (core/util/memory.h)
+  kdswap::configureMalloc();  // before any thread allocates (core/util/memory.h)
   std::unique_ptr<kdswap::MpiSession> session;
   try {
     session = std::make_unique<kdswap::MpiSession>(argc, argv);

@@ -103,24 +103,40 @@ std::int64_t compositeInto(Image& dst, const ImageView& other, bool otherInFront
 Image overOf(const ImageView& front, const ImageView& back) {
   const Rect both = front.rect.unite(back.rect);
   std::vector<float> values = pixel_pool::take(std::size_t(both.area()) * 4);
+  auto append = [&values](const Rgba* pixels, int n) {
+    values.insert(values.end(), &pixels->r, &pixels->r + std::size_t(n) * 4);
+  };
   for (int y = both.y; y < both.bottom(); ++y) {
-    // The row is built in place at the end of the buffer: zeroed, `back` copied in, `front`
-    // blended on. A row is at most a few tens of KiB, so only the finished row leaves the cache.
-    const std::size_t start = values.size();
-    values.resize(start + std::size_t(both.w) * 4, 0.0f);
-    Rgba* row = reinterpret_cast<Rgba*>(values.data() + start) - both.x;  // indexed by frame x
+    // The row is appended piece by piece in x order, each pixel written once: where neither
+    // image covers it transparent, where one does a copy, where both do `back` copied and
+    // `front` blended onto it while the row is still in the cache.
     const bool inBack = y >= back.rect.y && y < back.rect.bottom();
     const bool inFront = y >= front.rect.y && y < front.rect.bottom();
-    if (inBack) std::memcpy(row + back.rect.x, back.row(y), sizeof(Rgba) * std::size_t(back.rect.w));
-    if (!inFront) continue;
-    const Rgba* f = front.row(y) - front.rect.x;
-    // The row of `front` in three parts: [x, lo) and [hi, right) are over a transparent pixel (a
-    // copy), [lo, hi) is where `back` covers too (a blend; empty when it does not).
-    const int lo = inBack ? std::min(std::max(front.rect.x, back.rect.x), front.rect.right()) : front.rect.x;
-    const int hi = inBack ? std::max(lo, std::min(front.rect.right(), back.rect.right())) : lo;
-    std::memcpy(row + front.rect.x, f + front.rect.x, sizeof(Rgba) * std::size_t(lo - front.rect.x));
-    for (int x = lo; x < hi; ++x) row[x] = over(f[x], row[x]);
-    std::memcpy(row + hi, f + hi, sizeof(Rgba) * std::size_t(front.rect.right() - hi));
+    const int backLo = inBack ? back.rect.x : both.right(), backHi = inBack ? back.rect.right() : both.right();
+    const int frontLo = inFront ? front.rect.x : both.right(), frontHi = inFront ? front.rect.right() : both.right();
+    const Rgba* b = inBack ? back.row(y) - back.rect.x : nullptr;  // indexed by frame x
+    const Rgba* f = inFront ? front.row(y) - front.rect.x : nullptr;
+    for (int x = both.x; x < both.right();) {
+      const bool coveredByBack = x >= backLo && x < backHi, coveredByFront = x >= frontLo && x < frontHi;
+      // The piece ends where either image starts or ends.
+      int end = both.right();
+      for (const int edge : {backLo, backHi, frontLo, frontHi})
+        if (edge > x) end = std::min(end, edge);
+      const int n = end - x;
+      if (coveredByBack) {
+        const std::size_t at = values.size();
+        append(b + x, n);
+        if (coveredByFront) {
+          Rgba* row = reinterpret_cast<Rgba*>(values.data() + at) - x;
+          for (int i = x; i < end; ++i) row[i] = over(f[i], row[i]);
+        }
+      } else if (coveredByFront) {
+        append(f + x, n);
+      } else {
+        values.insert(values.end(), std::size_t(n) * 4, 0.0f);
+      }
+      x = end;
+    }
   }
   return Image(both, std::move(values));
 }
