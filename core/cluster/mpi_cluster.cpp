@@ -17,7 +17,6 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 #include <oneapi/tbb/task_group.h>
 
 #include "core/cluster/host.h"
@@ -264,7 +263,7 @@ MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& reque
       request(request),
       options(options),
       nodesPerRank(nodesPerRank),
-      arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
+      arena(options.threads, nodesPerRank),
       // The partition in the strategy's group shape, exactly as the in-process cluster builds it.
       strategy(createStrategy(options.strategy, options.composite)),
       tree(KdTree::build(source.info().dims, ranks * nodesPerRank, options.partition, options.slabAxis,

@@ -17,10 +17,10 @@
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
-#include <oneapi/tbb/task_arena.h>
 
 #include "core/cluster/brick_schedule.h"
 #include "core/cluster/culling_rest.h"
+#include "core/cluster/node_arena.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/comm/mpi_network.h"
 #include "core/partition/cost_field.h"
@@ -57,7 +57,7 @@ struct MpiRankFrame {
   FrameRequest request;             //!< the current frame's (its view changes with setView)
   const ClusterOptions& options;
   int nodesPerRank;
-  tbb::task_arena arena;
+  NodeArena arena;
   std::unique_ptr<Strategy> strategy;
   KdTree tree;
   //! Over-decomposition (--bricks-per-node M; perNode 1 when off): every rank keeps the same book

@@ -125,7 +125,7 @@ VirtualCluster::VirtualCluster(const VolumeSource& source, const ClusterOptions&
       tree_(buildTree(info_, options, cost_)),
       layout_(tree_, options.bricksPerNode, PartitionBalance{cost_, {}}),
       strategy_(createStrategy(options.strategy, options.composite)),
-      arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
+      arena_(options.threads, options.nodes),
       network_(options.nodes, waitModeFor(options.execution)),
       nodes_(std::size_t(options.nodes)) {
   const double start = nowSeconds();

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include <glm/vec4.hpp>
-#include <oneapi/tbb/task_arena.h>
 
 #include "core/cluster/culling_rest.h"
 #include "core/cluster/fault_plan.h"
 #include "core/cluster/frame_request.h"
+#include "core/cluster/node_arena.h"
 #include "core/cluster/node_program.h"
 #include "core/cluster/phase_record.h"
 #include "core/comm/inproc_network.h"
@@ -127,7 +127,7 @@ class VirtualCluster {
   std::vector<double> brickCost_;          //!< per brick: estimated work for the next frame
   std::vector<std::set<int>> held_;        //!< per node: foreign bricks it holds (host's bookkeeping)
   std::unique_ptr<Strategy> strategy_;
-  tbb::task_arena arena_;
+  NodeArena arena_;
   InprocNetwork network_;
   std::vector<NodeState> nodes_;  //!< nodes_[r] is touched only by node r's task
   double distributeSeconds_ = 0;

@@ -1,0 +1,62 @@
+// NodeArena: slots for a quarter of the nodes (oneTBB's spare coroutines for suspended nodes), and
+// never more threads at once than asked for.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/parallel_for.h>
+
+#include "core/cluster/node_arena.h"
+
+using namespace kdswap;
+
+namespace {
+
+//! Distinct threads that ran a parallel loop of short sleeps inside `arena`.
+std::size_t threadsInLoop(NodeArena& arena) {
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  arena.execute([&] {
+    tbb::parallel_for(0, 400, [&](int) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.insert(std::this_thread::get_id());
+    });
+  });
+  return seen.size();
+}
+
+}  // namespace
+
+TEST_CASE("node arena: a slot per four nodes, at least one per thread") {
+  CHECK(NodeArena(2, 8).slots() == 2);
+  CHECK(NodeArena(2, 64).slots() == 16);
+  CHECK(NodeArena(2, 65).slots() == 17);
+  CHECK(NodeArena(4, 1).slots() == 4);
+  CHECK(NodeArena(1, 512).slots() == 128);
+  CHECK(NodeArena(0, 4).threads() >= 1);
+}
+
+TEST_CASE("node arena: extra slots add no threads") {
+  // One thread asked for, 16 slots: without the process-wide bound the pool's other workers
+  // would join the spare slots on a machine with several cores.
+  NodeArena one(1, 64);
+  CHECK(one.slots() == 16);
+  CHECK(threadsInLoop(one) == 1);
+  // Two asked for: at most two, whatever the machine has.
+  NodeArena two(2, 64);
+  CHECK(threadsInLoop(two) <= 2);
+}
+
+TEST_CASE("node arena: the bound on threads ends with the arena") {
+  const std::size_t before = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  {
+    NodeArena one(1, 64);
+    if (before > 1) CHECK(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == 1);
+  }
+  CHECK(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == before);
+}
