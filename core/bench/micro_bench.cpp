@@ -10,6 +10,7 @@
 
 #include "core/bench/quantised_source.h"
 #include "core/bench/statistics.h"
+#include "core/cluster/node_arena.h"
 #include "core/comm/inproc_network.h"
 #include "core/composite/registry.h"
 #include "core/render/ray_march.h"
@@ -187,7 +188,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
     fillSynthetic(source[std::size_t(r)], r);
   }
   std::vector<double> maxima, walls;
-  tbb::task_arena arena;
+  NodeArena arena(0, nodes);  // as the clusters run their nodes
   for (int i = 0; i <= repeats; ++i) {
     network.reset();
     std::vector<Image> partial = source;  // copied outside the timed region
