@@ -25,7 +25,8 @@ class NodeArena {
   decltype(auto) execute(F&& f) {
     return arena_.execute(std::forward<F>(f));
   }
-  //! Threads that run at once (for reports and tests).
+  //! The thread count asked for (0 resolved to one per core); fewer run where the process allows
+  //! fewer (global_control).
   int threads() const { return threads_; }
   //! Arena slots (>= threads()).
   int slots() const { return slots_; }

@@ -48,7 +48,7 @@ std::string formatBytes(std::uint64_t bytes) {
 void configureMalloc() {
 #if defined(__GLIBC__)
   mallopt(M_ARENA_MAX, 1);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);   // glibc's largest: bricks still get their own mappings
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);   // glibc's largest; a larger brick or volume gets its own mapping
   mallopt(M_TRIM_THRESHOLD, 256 << 20);  // the top of the heap goes back only beyond 256 MiB free
 #endif
 }

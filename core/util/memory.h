@@ -21,7 +21,7 @@ std::string formatBytes(std::uint64_t bytes);  //!< "1.5 GiB"
 //!   maps each buffer of more than 128 KiB-32 MiB (its threshold moves) on its own and unmaps it
 //!   when freed, so every frame's partial images and composited halves were fresh pages: a page
 //!   fault per 4 KiB and an unmap that flushes the other cores' TLBs (phantom at P = 64: 610 page
-//!   faults a frame, 190 with these settings). Peak RSS is unchanged: a frame reuses what the last
+//!   faults a frame, 181 with these settings). Peak RSS is unchanged: a frame reuses what the last
 //!   one freed.
 void configureMalloc();
 
