@@ -233,6 +233,12 @@ void run(const BenchOptions& o) {
     TargetOptions t;
     t.frames = o.frames;
     t.headPath = o.head;
+    // The default is relative to the repository (its data sets lie beside it, in ../shared/data):
+    // found from any folder when this build's source tree has it.
+    std::error_code ec;
+    const std::filesystem::path besideSource = std::filesystem::path(KDSWAP_SOURCE_DIR) / o.head;
+    if (!o.headGiven && !std::filesystem::exists(o.head, ec) && std::filesystem::is_regular_file(besideSource, ec))
+      t.headPath = besideSource.lexically_normal().string();
     if (!o.vtkMs.empty()) {
       t.vtkMs = parseNumbers(o.vtkMs, ',', "--vtk-ms");
       if (t.vtkMs.size() != 3 ||

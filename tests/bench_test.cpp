@@ -226,3 +226,17 @@ TEST_CASE("targets over several runs are judged by the median of the runs; peak 
   CHECK(medianOfRuns({run(30.0, 330.0, true)})[0].note.empty());
   CHECK(medianOfRuns({}).empty());
 }
+
+TEST_CASE("a target not run says why, in one run or several, and shows no measurement") {
+  const SpeedTarget missing{"CT head wall", "kdswap bench --volume h.nhdr ...", 0.0, 42.0, "ms", false, false,
+                            "h.nhdr not found (pass --head FILE)"};
+  const std::vector<SpeedTarget> merged = medianOfRuns({{missing}, {missing}, {missing}});
+  REQUIRE(merged.size() == 1);
+  CHECK_FALSE(merged[0].ran);
+  CHECK(merged[0].note == "h.nhdr not found (pass --head FILE)");
+  const std::string text = formatSpeedTargets(merged);
+  CHECK(text.find("NOT RUN") != std::string::npos);
+  CHECK(text.find("not measured: h.nhdr not found (pass --head FILE)") != std::string::npos);
+  CHECK(text.find("measured 0.00") == std::string::npos);
+  CHECK(text.find("0 of 1 targets met (0 run)") != std::string::npos);
+}

@@ -137,7 +137,7 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     t3.measured = c.wallSeconds * 1e3;
     t3.ran = !interrupted;
   } else {
-    t3.note = "not run: " + o.headPath + " not found (run from /work/main or pass --head FILE)";
+    t3.note = o.headPath + " not found (pass --head FILE)";
   }
   out.push_back(t3);
   if (vtkHere && t3.ran) out.push_back(halfOfVtkHere(t3, "CT head, P=64", o.vtkMs[2]));
@@ -217,7 +217,7 @@ std::vector<SpeedTarget> medianOfRuns(const std::vector<std::vector<SpeedTarget>
     const std::string runsNote =
         "median of " + std::to_string(values.size()) + (values.size() == 1 ? " run: " : " runs: ") + each;
     t.note = t.note.empty() ? runsNote : runsNote + "; first run: " + runs[0][i].note;
-    if (!t.ran) t.note = "not run";
+    if (!t.ran) t.note = runs[0][i].note;  // why it was not run
   }
   return out;
 }
@@ -239,9 +239,15 @@ std::string formatSpeedTargets(const std::vector<SpeedTarget>& targets) {
     const char* verdict = !t.ran ? "NOT RUN" : (t.met() ? "MET" : "MISSED");
     ran += t.ran;
     met += t.met();
-    std::snprintf(buf, sizeof buf, "  %-8s %s\n           measured %.2f %s, target %s %.2f %s%s%s\n           command: %s\n",
-                  verdict, t.name.c_str(), t.measured, t.unit.c_str(), t.atLeast ? ">=" : "<=", t.limit,
-                  t.unit.c_str(), t.note.empty() ? "" : "; ", t.note.c_str(), t.command.c_str());
+    if (!t.ran) {
+      std::snprintf(buf, sizeof buf, "  %-8s %s\n           not measured%s%s; target %s %.2f %s\n           command: %s\n",
+                    verdict, t.name.c_str(), t.note.empty() ? "" : ": ", t.note.c_str(), t.atLeast ? ">=" : "<=",
+                    t.limit, t.unit.c_str(), t.command.c_str());
+    } else {
+      std::snprintf(buf, sizeof buf, "  %-8s %s\n           measured %.2f %s, target %s %.2f %s%s%s\n           command: %s\n",
+                    verdict, t.name.c_str(), t.measured, t.unit.c_str(), t.atLeast ? ">=" : "<=", t.limit,
+                    t.unit.c_str(), t.note.empty() ? "" : "; ", t.note.c_str(), t.command.c_str());
+    }
     out += buf;
   }
   std::snprintf(buf, sizeof buf, "%d of %zu targets met (%d run)\n", met, targets.size(), ran);
