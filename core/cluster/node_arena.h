@@ -4,14 +4,13 @@
 // With two slots, 64 nodes on 2 threads mapped and unmapped ~55 stacks a frame: each unmap flushes
 // the other core's TLB (an inter-processor interrupt, dear in a virtual machine) and each new stack
 // faults its pages in again (phantom 256^3 at P = 64: 61 -> 50 ms a frame, turbulence at P = 512
-// 670 -> 563 ms). Slots beyond the thread count add no threads: a global_control keeps the process
-// at the thread count when that is below what oneTBB would run anyway.
+// 670 -> 563 ms). The slots beyond the thread count are reserved for application threads, which
+// oneTBB's workers never take, and only the one thread that runs the cluster enters: the arena
+// still runs the thread count asked for, and nothing outside it changes.
 #pragma once
 
-#include <optional>
 #include <utility>
 
-#include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/task_arena.h>
 
 namespace kdswap {
@@ -26,7 +25,7 @@ class NodeArena {
     return arena_.execute(std::forward<F>(f));
   }
   //! The thread count asked for (0 resolved to one per core); fewer run where the process allows
-  //! fewer (global_control).
+  //! fewer (tbb::global_control).
   int threads() const { return threads_; }
   //! Arena slots (>= threads()).
   int slots() const { return slots_; }
@@ -36,7 +35,6 @@ class NodeArena {
 
  private:
   int threads_, slots_;
-  std::optional<tbb::global_control> limit_;  //!< only when slots exceed a thread count below the default
   tbb::task_arena arena_;
 };
 
