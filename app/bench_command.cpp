@@ -322,8 +322,9 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_flag("--paper", o->paper, "Run the paper's sourced cells and compare");
   cmd->add_flag("--targets", o->targets, "Measure issue 6's speed targets");
   CLI::Option* head = cmd->add_option("--head", o->head,
-                                      "CT head for --targets (must exist when given; when the default is absent, "
-                                      "that target is not run)")
+                                      "CT head for --targets (must exist when given; the default is relative to "
+                                      "the working folder or, failing that, to this build's source tree; "
+                                      "where neither has it, that target is not run)")
                            ->check(nonEmpty())
                            ->capture_default_str();
   cmd->add_option("--repeat", o->repeat,
