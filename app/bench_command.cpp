@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/raw_layout_options.h"
 #include "app/scene_options.h"
 #include "core/bench/bench_grid.h"
 #include "core/bench/bench_report.h"
@@ -37,6 +38,7 @@ struct BenchOptions {
   std::string composite = "binary-swap", tf, shading = "on", partition = "kd", outDir = "bench-out";
   std::string head = "../shared/data/headsq.nhdr", view = "30,15";
   std::string vtkMs;
+  RawLayoutOptions raw;  //!< --raw-*, with --volume only
   int repeat = 1;
   std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1", voxels = "auto";
   int frames = 5, quantise = 0, threads = 0;
@@ -97,7 +99,7 @@ void progressLine(const BenchProgress& p) {
 
 std::string commandLine(const BenchOptions& o) {
   std::string c = "kdswap bench " + (o.volume.empty() ? "--dataset " + (o.dataset.empty() ? std::string(kDefaultDataset) : o.dataset)
-                                                      : "--volume " + o.volume);
+                                                      : "--volume " + o.volume + rawLayoutArguments(o.raw));
   if (!o.spacing.empty()) c += " --spacing " + o.spacing;
   if (o.quantise) c += " --quantise " + std::to_string(o.quantise);
   char buf[512];
@@ -146,9 +148,11 @@ void runGrid(const BenchOptions& o) {
   if (!o.tf.empty()) transfer = loadTransferOption(o.tf);
   std::optional<glm::vec3> spacing;
   if (!o.spacing.empty()) spacing = parseSpacing(o.spacing, "--spacing");
+  const std::string dataset = o.dataset.empty() ? kDefaultDataset : o.dataset;
+  if (o.volume.empty()) checkNoRawLayout(o.raw, "--dataset " + dataset + (o.dataset.empty() ? " (the default)" : ""));
+  const RawLayout layout = parseRawLayout(o.raw);
 
-  std::unique_ptr<VolumeSource> source =
-      o.volume.empty() ? openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset) : openVolumeFile(o.volume);
+  std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(dataset) : openVolumeFile(o.volume, layout);
   if (spacing) source = std::make_unique<RespacedSource>(std::move(source), *spacing);
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   const VolumeInfo& info = source->info();
@@ -160,7 +164,7 @@ void runGrid(const BenchOptions& o) {
   const BenchResult result = runBenchGrid(*source, g, progressLine, &gStop);
   if (stderrIsTerminal()) std::fprintf(stderr, "\n");  // ends the rewritten line
   const VoxelStorage storage = VoxelStorage::forVolume(info, g.cluster.voxels);
-  BenchContext ctx{commandLine(o), o.volume.empty() ? (o.dataset.empty() ? kDefaultDataset : o.dataset) : o.volume,
+  BenchContext ctx{commandLine(o), o.volume.empty() ? dataset : o.volume,
                    info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees,
                    storage.compactFormat() ? "compact" : "float"};
   std::printf("%s (%dx%dx%d %s, %s voxels), step %g, shading %s, median of %d frames turning %g deg/frame\n\n",
@@ -194,6 +198,8 @@ void run(const BenchOptions& o) {
   if (o.repeat != 1 && !o.targets) throw Error("--repeat goes with --targets");
   if (o.headGiven && !o.targets) throw Error("--head goes with --targets");
   if (o.repeat < 1 || o.repeat > 20) throw Error("--repeat must be from 1 to 20");
+  // These modes read their own data sets, never --volume.
+  if (o.micro || o.paper || o.targets) checkNoRawLayout(o.raw, o.micro ? "--micro" : o.paper ? "--paper" : "--targets");
   gStop.store(false);
   auto previous = std::signal(SIGINT, onBenchInterrupt);
   struct Restore {
@@ -270,6 +276,7 @@ void addBenchCommand(CLI::App& app) {
       "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 1,8,64 --balance space,cost\n"
       "  kdswap bench --dataset phantom:128 --sizes 256 --nodes 1,8,64 --network ethernet10\n"
       "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 8 --speeds 1,0.25 --bricks-per-node 1,4\n"
+      "  kdswap bench --volume scan.raw --raw-dims 256x256x113 --raw-type uint16 --sizes 256 --nodes 1,8\n"
       "  kdswap bench --micro      kernels alone: ray casting per core, over vs memcpy, binary-swap\n"
       "  kdswap bench --paper      the paper's sourced cells beside ours\n"
       "  kdswap bench --targets    issue 6's speed targets, MET or MISSED\n"
@@ -277,7 +284,11 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--dataset", o->dataset,
                   "Built-in data set NAME[:N|:WxHxD]: phantom (head), vessels, turbulence (vorticity)")
       ->check(nonEmpty());
-  cmd->add_option("--volume", o->volume, "Volume file instead of a data set")->check(nonEmpty());
+  cmd->add_option("--volume", o->volume,
+                  "Volume file instead of a data set: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
+                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)")
+      ->check(nonEmpty());
+  addRawLayoutOptions(cmd, o->raw);
   cmd->add_option("--spacing", o->spacing, "Voxel spacing SX,SY,SZ instead of the data's (e.g. 1,1,1)")->check(nonEmpty());
   cmd->add_option("--quantise", o->quantise, "Round the data to 8 or 16 bits first (0: as stored)")
       ->check(wholeNumber());

@@ -11,6 +11,7 @@
 
 #include "app/commands.h"
 #include "app/output_files.h"
+#include "app/raw_layout_options.h"
 #include "app/scene_options.h"
 #include "core/bench/quantised_source.h"
 #include "core/util/error.h"
@@ -24,6 +25,7 @@ namespace {
 
 struct ExportOptions {
   std::string dataset, volume, spacing, type, out;
+  RawLayoutOptions raw;
   int quantise = 0;
 };
 
@@ -35,8 +37,10 @@ void runExport(const ExportOptions& o) {
   // 8-bit samples cannot keep 16-bit levels: one of the two options would be silently ignored.
   if (o.quantise == 16 && o.type == "uint8")
     throw Error("--type uint8 cannot hold --quantise 16's levels; use --type uint16 or float32, or --quantise 8");
+  if (!o.dataset.empty()) checkNoRawLayout(o.raw, "--dataset " + o.dataset);
+  const RawLayout layout = parseRawLayout(o.raw);
   checkOutputFiles({{"--out", o.out}}, {});  // the input may be replaced: the file is written beside it, then renamed
-  std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(o.dataset) : openVolumeFile(o.volume);
+  std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDataset(o.dataset) : openVolumeFile(o.volume, layout);
   if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   // Default type: the quantised width (exact: the values are those levels), else float32 (exact
@@ -70,7 +74,11 @@ void addExportCommand(CLI::App& app) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* cmd = app.add_subcommand("export", "Write a data set or volume as a .nrrd file (to open it in other tools)");
   cmd->add_option("--dataset", options->dataset, "Built-in data set NAME[:N|:WxHxD], e.g. phantom:256")->check(nonEmpty());
-  cmd->add_option("--volume", options->volume, "Volume file instead of a data set")->check(nonEmpty());
+  cmd->add_option("--volume", options->volume,
+                  "Volume file instead of a data set: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
+                  "(layout from --raw-* or a name like head_256x256x113_uint16.raw)")
+      ->check(nonEmpty());
+  addRawLayoutOptions(cmd, options->raw);
   cmd->add_option("--spacing", options->spacing, "Voxel spacing SX,SY,SZ instead of the data's")->check(nonEmpty());
   cmd->add_option("--quantise", options->quantise, "Round the data to 8 or 16 bits first (0: as stored)")
       ->capture_default_str();
@@ -84,7 +92,8 @@ void addExportCommand(CLI::App& app) {
   cmd->footer(
       "Examples:\n"
       "  kdswap export --dataset phantom:256 --quantise 8 --out phantom256.nrrd\n"
-      "  kdswap export --dataset turbulence:256 --quantise 16 --out turbulence256.nrrd");
+      "  kdswap export --dataset turbulence:256 --quantise 16 --out turbulence256.nrrd\n"
+      "  kdswap export --volume scan.raw --raw-dims 256x256x113 --raw-type uint16 --raw-endian big --out scan.nrrd");
   cmd->callback([options] { runExport(*options); });
 }
 

@@ -185,10 +185,7 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
                   "Volume file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw "
                   "(layout from --raw-* or a name like head_256x256x113_uint16.raw)")
       ->check(nonEmpty());
-  cmd->add_option("--raw-dims", o.rawDims, "Raw files: dimensions WxHxD");
-  cmd->add_option("--raw-type", o.rawType, "Raw files: int8 uint8 int16 uint16 int32 uint32 float32 float64");
-  cmd->add_option("--raw-endian", o.rawEndian, "Raw files: little (default) or big")->check(nonEmpty());
-  cmd->add_option("--raw-spacing", o.rawSpacing, "Raw files: voxel spacing SX,SY,SZ");
+  addRawLayoutOptions(cmd, o.raw);
   cmd->add_option("--spacing", o.spacing,
                   "Voxel spacing SX,SY,SZ instead of the data's, for any volume (e.g. 1,1,1 to compare with "
                   "a renderer that ignores the header's spacing)")
@@ -270,47 +267,13 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
       ->group("Testing");
 }
 
-namespace {
-
-//! The --raw-* options describe a --volume file: with a data set they would be silently ignored.
-void checkNoRawLayout(const std::string& dataset, const SceneOptions& o) {
-  const std::pair<const char*, const std::string*> raw[] = {
-      {"--raw-dims", &o.rawDims}, {"--raw-type", &o.rawType}, {"--raw-endian", &o.rawEndian}, {"--raw-spacing", &o.rawSpacing}};
-  for (const auto& [option, value] : raw)
-    if (!value->empty())
-      throw Error(std::string(option) + " describes a raw --volume file; it does not apply to --dataset " + dataset);
-}
-
-}  // namespace
-
 Scene buildScene(const SceneOptions& o) {
   Scene scene;
   if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
-  if (o.volume.empty()) checkNoRawLayout(o.dataset.empty() ? kDefaultDataset + std::string(" (the default)") : o.dataset, o);
   if (!o.volume.empty()) {
-    RawLayout layout;
-    if (!o.rawDims.empty()) {
-      const auto d = parseNumbers(o.rawDims, 'x', "--raw-dims");
-      if (d.size() != 3) throw Error("--raw-dims \"" + o.rawDims + "\": expected WxHxD");
-      for (double v : d)
-        if (v < 2 || v > 1e6 || v != std::floor(v))
-          throw Error("--raw-dims \"" + o.rawDims + "\": each size must be a whole number from 2 to 1000000");
-      layout.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
-    }
-    if (!o.rawType.empty()) layout.type = o.rawType;
-    if (!o.rawEndian.empty()) {  // only when given: a header file refuses any raw layout
-      if (o.rawEndian != "little" && o.rawEndian != "big")
-        throw Error("--raw-endian \"" + o.rawEndian + "\": expected little or big");
-      layout.bigEndian = o.rawEndian == "big";
-    }
-    layout.rawOptions = true;
-    if (!o.rawSpacing.empty()) {
-      const auto s = parseNumbers(o.rawSpacing, ',', "--raw-spacing");
-      if (s.size() != 3) throw Error("--raw-spacing \"" + o.rawSpacing + "\": expected SX,SY,SZ");
-      layout.spacing = glm::vec3(float(s[0]), float(s[1]), float(s[2]));
-    }
-    scene.source = openVolumeFile(o.volume, layout);
+    scene.source = openVolumeFile(o.volume, parseRawLayout(o.raw));
   } else {
+    checkNoRawLayout(o.raw, "--dataset " + (o.dataset.empty() ? kDefaultDataset + std::string(" (the default)") : o.dataset));
     scene.source = openDataset(o.dataset.empty() ? kDefaultDataset : o.dataset);
   }
   if (!o.spacing.empty()) scene.source = std::make_unique<RespacedSource>(std::move(scene.source), parseSpacing(o.spacing, "--spacing"));

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/vec2.hpp>
 
+#include "app/raw_layout_options.h"
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/transfer/transfer_function.h"
@@ -22,7 +23,7 @@ namespace kdswap {
 struct SceneOptions {
   std::string dataset;
   std::string volume;
-  std::string rawDims, rawType, rawEndian, rawSpacing;  //!< empty: not given (a header file refuses them)
+  RawLayoutOptions raw;  //!< --raw-*: the layout of a raw --volume file
   std::string spacing;  //!< overrides the data's voxel spacing (any volume or data set)
   std::string size = "512x512";
   std::string view = "30,15";

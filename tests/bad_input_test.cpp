@@ -85,7 +85,11 @@ TEST_CASE("raw files with the wrong size or no layout are refused") {
   writeFile(dir.file("long_4x4x4_uint8.raw"), std::string(65, '\0'));
   expectRefused(dir.file("long_4x4x4_uint8.raw"), "header and data size disagree");
   writeFile(dir.file("plain.raw"), std::string(64, '\0'));
-  expectRefused(dir.file("plain.raw"), "raw file layout unknown");
+  // Without --raw-* options (the GUI) the message offers only the name pattern and a header.
+  expectRefused(dir.file("plain.raw"),
+                "raw file layout unknown: no dimensions and no sample type: rename it NAME_WxHxD_TYPE.raw, e.g. "
+                "head_256x256x113_uint16.raw (TYPE: int8 uint8");
+  expectRefused(dir.file("plain.raw"), "), or describe it with a .nhdr header");
   writeFile(dir.file("odd_4x4x4_complex64.raw"), std::string(64, '\0'));
   expectRefused(dir.file("odd_4x4x4_complex64.raw"), "type \"complex64\": unsupported (expected one of int8 uint8");
   RawLayout layout;

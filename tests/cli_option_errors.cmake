@@ -35,27 +35,36 @@ kdswap_cli_case(RenderRawDimsWithADatasetAreRefused
                 EXPECT "--raw-dims describes a raw --volume file. it does not apply to --dataset phantom:16"
                 ARGS render ${_tiny} --raw-dims 66x66x66)
 kdswap_cli_case(InfoRawTypeWithADatasetIsRefused
-                EXPECT "--raw-type describes a raw volume file. it does not apply to --dataset phantom:16"
+                EXPECT "--raw-type describes a raw --volume file. it does not apply to --dataset phantom:16"
                 ARGS info --dataset phantom:16 --raw-type uint8)
+kdswap_cli_case(BenchRawSkipWithADatasetIsRefused
+                EXPECT "--raw-skip describes a raw --volume file. it does not apply to --dataset phantom:16"
+                ARGS bench ${_benchTiny} --raw-skip 8 --out-dir b)
+kdswap_cli_case(ExportRawDimsWithADatasetAreRefused
+                EXPECT "--raw-dims describes a raw --volume file. it does not apply to --dataset phantom:16"
+                ARGS export --dataset phantom:16 --raw-dims 4x4x4 --out x.nrrd)
+kdswap_cli_case(BenchRawDimsWithTargetsAreRefused
+                EXPECT "--raw-dims describes a raw --volume file. it does not apply to --targets"
+                ARGS bench --targets --raw-dims 4x4x4)
 kdswap_cli_case(BenchHeadWithoutTargetsIsRefused EXPECT "kdswap: --head goes with --targets"
                 ARGS bench ${_benchTiny} --head /nonexistent/head.nhdr --out-dir b)
 
 # A raw file without a layout: the message says what is missing and how to give it with the
-# command at hand (bench and export have no --raw-* options).
-set(_byName "no dimensions and no sample type: rename it NAME_WxHxD_TYPE.raw, e.g. head_256x256x113_uint16.raw .TYPE: int8 uint8")
-kdswap_cli_case(BenchRawFileWithoutLayoutNamesTheFileNamePattern EXPECT "plain.raw: raw file layout unknown: ${_byName}.*\\.nhdr header"
-                FORBID "--raw|command line" ARGS bench --volume plain.raw --sizes 16 --nodes 1 --frames 1 --out-dir b)
-kdswap_cli_case(ExportRawFileWithoutLayoutNamesTheFileNamePattern EXPECT "plain.raw: raw file layout unknown: ${_byName}"
-                FORBID "--raw|command line" ARGS export --volume plain.raw --out x.nrrd)
+# command at hand (every command that reads a --volume has the --raw-* options).
+set(_bothOptions "plain.raw: raw file layout unknown: give --raw-dims WxHxD and --raw-type TYPE, or name it NAME_WxHxD_TYPE.raw")
+kdswap_cli_case(BenchRawFileWithoutLayoutNamesBothOptions EXPECT "${_bothOptions}"
+                ARGS bench --volume plain.raw --sizes 16 --nodes 1 --frames 1 --out-dir b)
+kdswap_cli_case(ExportRawFileWithoutLayoutNamesBothOptions EXPECT "${_bothOptions}" ARGS export --volume plain.raw --out x.nrrd)
+kdswap_cli_case(ExportRawTypeWithoutRawDimsSaysTheDimensionsAreMissing
+                EXPECT "plain.raw: raw file layout unknown: --raw-dims WxHxD is missing"
+                ARGS export --volume plain.raw --raw-type uint8 --out x.nrrd)
 kdswap_cli_case(RenderRawDimsWithoutRawTypeSaysTheTypeIsMissing
                 EXPECT "plain.raw: raw file layout unknown: --raw-type TYPE is missing .TYPE: int8 uint8 "
                 ARGS render --volume plain.raw --raw-dims 66x66x66 --size 16x16 --out o.png)
 kdswap_cli_case(RenderRawTypeWithoutRawDimsSaysTheDimensionsAreMissing
                 EXPECT "plain.raw: raw file layout unknown: --raw-dims WxHxD is missing"
                 ARGS render --volume plain.raw --raw-type uint8 --size 16x16 --out o.png)
-kdswap_cli_case(InfoRawFileWithoutLayoutNamesBothOptions
-                EXPECT "plain.raw: raw file layout unknown: give --raw-dims WxHxD and --raw-type TYPE, or name it NAME_WxHxD_TYPE.raw"
-                ARGS info plain.raw)
+kdswap_cli_case(InfoRawFileWithoutLayoutNamesBothOptions EXPECT "${_bothOptions}" ARGS info plain.raw)
 
 # Failures that used to print a library's text.
 kdswap_cli_case(BenchOutDirThatCannotBeMadeIsOneLineNamingTheOption
@@ -72,6 +81,8 @@ kdswap_cli_case(InjectedDelayAboveAnHourIsRefused
                 ARGS render ${_tiny} --nodes 4 --inject-fault delay:1:0:1e300)
 kdswap_cli_case(RawSkipBeyond64BitsIsRefused EXPECT "--raw-skip: .99999999999999999999. is out of range"
                 ARGS info --raw-skip 99999999999999999999 --raw-dims 2x2x2 --raw-type uint8 plain.raw)
+kdswap_cli_case(BenchNegativeRawSkipIsRefused EXPECT "kdswap: --raw-skip -1: expected a number of bytes >= 0"
+                ARGS bench --volume plain.raw --raw-skip -1 --raw-dims 2x2x2 --raw-type uint8 --sizes 16 --nodes 1 --frames 1 --out-dir b)
 
 # Every error names its option; a node is named once.
 kdswap_cli_case(UnknownCompositeNamesTheOption

@@ -136,6 +136,13 @@ TEST_CASE("empty option values are refused, naming the option, instead of meanin
   expectRefused(kAnimate + "--out-dir " + dir.file("a") + " --keys \"\"", {"--keys: empty"});
   expectRefused("export --out \"\" --dataset phantom:8", {"--out: empty"});
   expectRefused("info --dataset \"\"", {"--dataset: empty"});
+  // Every command that reads a --volume has the --raw-* options; an empty one is not "not given".
+  const std::vector<std::string> readers = {kRender + png, kAnimate + "--out-dir " + dir.file("a"),
+                                            kBench + "--out-dir " + dir.file("b"),
+                                            "export --dataset phantom:8 --out " + dir.file("e.nrrd"), "info --dataset phantom:8"};
+  for (const std::string& command : readers)
+    for (const char* option : {"--raw-dims", "--raw-type", "--raw-endian", "--raw-spacing", "--raw-skip"})
+      expectRefused(command + " " + option + " \"\"", {std::string(option) + ": "});
 }
 
 TEST_CASE("a trailing separator is an empty item, not dropped") {
