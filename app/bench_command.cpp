@@ -45,6 +45,8 @@ struct BenchOptions {
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
   bool sparse = false, micro = false, paper = false, targets = false;
   bool headGiven = false;  //!< --head on the command line: then it must exist (the default may be absent)
+  std::string gridOption;  //!< the first grid-only option given (--dataset, --sizes, ...), or ""
+  bool framesGiven = false;
 };
 
 // Set by SIGINT; polled after every frame (lock-free atomic: safe in a signal handler).
@@ -198,8 +200,14 @@ void run(const BenchOptions& o) {
   if (o.repeat != 1 && !o.targets) throw Error("--repeat goes with --targets");
   if (o.headGiven && !o.targets) throw Error("--head goes with --targets");
   if (o.repeat < 1 || o.repeat > 20) throw Error("--repeat must be from 1 to 20");
-  // These modes read their own data sets, never --volume.
-  if (o.micro || o.paper || o.targets) checkNoRawLayout(o.raw, o.micro ? "--micro" : o.paper ? "--paper" : "--targets");
+  // These modes run fixed cells on their own data sets: the grid's options would be silently ignored.
+  if (o.micro || o.paper || o.targets) {
+    const std::string mode = o.micro ? "--micro" : o.paper ? "--paper" : "--targets";
+    checkNoRawLayout(o.raw, mode);
+    if (!o.gridOption.empty())
+      throw Error(o.gridOption + " sets up a grid run; " + mode + " runs its own fixed cells (see kdswap bench --help)");
+    if (o.micro && o.framesGiven) throw Error("--frames does not apply to --micro (its kernels repeat on their own)");
+  }
   gStop.store(false);
   auto previous = std::signal(SIGINT, onBenchInterrupt);
   struct Restore {
@@ -347,8 +355,23 @@ void addBenchCommand(CLI::App& app) {
                   "With --targets: VTK's times on this machine for turbulence, phantom and CT head "
                   "(scripts/vtk_baseline.py), e.g. 250,110,230; adds 'half of VTK here' targets")
       ->check(nonEmpty());
-  cmd->callback([o, head] {
+  // Options that only shape a grid run (--micro, --paper and --targets refuse them).
+  const std::vector<CLI::Option*> gridOnly = [cmd] {
+    std::vector<CLI::Option*> options;
+    for (const char* name : {"--dataset", "--volume", "--spacing", "--quantise", "--sizes", "--nodes", "--composite",
+                             "--degrees", "--view", "--step", "--shading", "--ert", "--tf", "--partition", "--sparse",
+                             "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
+                             "--out-dir"})
+      options.push_back(cmd->get_option(name));
+    return options;
+  }();
+  CLI::Option* frames = cmd->get_option("--frames");
+  cmd->callback([o, head, gridOnly, frames] {
     o->headGiven = head->count() > 0;
+    o->framesGiven = frames->count() > 0;
+    o->gridOption.clear();
+    for (CLI::Option* option : gridOnly)
+      if (option->count() > 0 && o->gridOption.empty()) o->gridOption = option->get_name();
     run(*o);
   });
 }

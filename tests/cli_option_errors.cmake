@@ -46,6 +46,18 @@ kdswap_cli_case(ExportRawDimsWithADatasetAreRefused
 kdswap_cli_case(BenchRawDimsWithTargetsAreRefused
                 EXPECT "--raw-dims describes a raw --volume file. it does not apply to --targets"
                 ARGS bench --targets --raw-dims 4x4x4)
+# The fixed modes run their own cells: a grid option there would be silently ignored.
+kdswap_cli_case(BenchDatasetWithTargetsIsRefused
+                EXPECT "kdswap: --dataset sets up a grid run. --targets runs its own fixed cells"
+                ARGS bench --targets --dataset vessels:64)
+kdswap_cli_case(BenchSizesWithPaperIsRefused
+                EXPECT "kdswap: --sizes sets up a grid run. --paper runs its own fixed cells"
+                ARGS bench --paper --sizes 64)
+kdswap_cli_case(BenchOutDirWithMicroIsRefused
+                EXPECT "kdswap: --out-dir sets up a grid run. --micro runs its own fixed cells"
+                ARGS bench --micro --out-dir b)
+kdswap_cli_case(BenchFramesWithMicroIsRefused EXPECT "kdswap: --frames does not apply to --micro"
+                ARGS bench --micro --frames 3)
 kdswap_cli_case(BenchHeadWithoutTargetsIsRefused EXPECT "kdswap: --head goes with --targets"
                 ARGS bench ${_benchTiny} --head /nonexistent/head.nhdr --out-dir b)
 
