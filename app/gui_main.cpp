@@ -1,13 +1,18 @@
 // kdswap-gui: the desktop app (GLFW + Dear ImGui). Parses the options and runs ui/gui_app.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "app/raw_layout_options.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/composite/registry.h"
 #include "core/util/error.h"
 #include "core/util/memory.h"
+#include "core/volume/datasets/dataset.h"
 #include "ui/gui_app.h"
 #include "core/util/printable_text.h"
 
@@ -21,6 +26,8 @@ int main(int argc, char** argv) {
       "image after each compositing phase (the paper's Figure 6), the transfer function and timings.\n"};
   app.add_option("--dataset,-d", o.dataset, "Built-in data set NAME[:SIZE] (phantom, vessels, turbulence) or a volume file")
       ->capture_default_str();
+  kdswap::RawLayoutOptions raw;
+  kdswap::addRawLayoutOptions(&app, raw);
   app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P, 1.." + std::to_string(kdswap::kMaxNodes))
       ->capture_default_str();
   app.add_option("--partition", o.partition, "kd or slab")->capture_default_str();
@@ -56,6 +63,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Mouse: drag to orbit, right-drag to pan, wheel to zoom, R to reset the view.\n"
       "Example: kdswap-gui --dataset phantom:128 --nodes 8\n"
+      "Raw file: kdswap-gui --dataset scan.raw --raw-dims 256x256x113 --raw-type uint16\n"
       "Headless: xvfb-run -a -s \"-screen 0 1600x1000x24\" kdswap-gui --screenshot shot.png --frames 30\n"
       "Measure: kdswap-gui --frames 300 --report-fps fps.json");
   try {
@@ -66,6 +74,10 @@ int main(int argc, char** argv) {
     if (app.count("--frames") && o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
     if (!o.screenshot.empty() && o.frames == 0 && o.script.empty()) o.frames = 30;
     if (!o.layout.empty() && o.screenshot.empty()) throw kdswap::Error("--layout needs --screenshot");
+    const std::vector<std::string> names = kdswap::datasetNames();
+    if (std::find(names.begin(), names.end(), o.dataset.substr(0, o.dataset.find(':'))) != names.end())
+      kdswap::checkNoRawLayout(raw, "--dataset " + o.dataset);
+    o.raw = kdswap::parseRawLayout(raw);  // also without --raw-*: a raw file missing its layout then names them
     return kdswap::runGui(o);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

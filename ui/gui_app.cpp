@@ -72,6 +72,7 @@ std::string presetFor(const std::string& data) {
 
 void initState(GuiState& state, const GuiOptions& o) {
   state.scene.data = o.dataset;
+  state.scene.rawPath = o.dataset, state.scene.raw = o.raw;
   state.scene.cluster.nodes = o.nodes;
   state.scene.cluster.partition = parsePartition(o.partition);
   checkStrategyName(o.composite);

@@ -4,10 +4,13 @@
 
 #include <string>
 
+#include "core/volume/reader.h"
+
 namespace kdswap {
 
 struct GuiOptions {
   std::string dataset = "phantom:128";  //!< built-in data set spec or volume file path
+  RawLayout raw;                        //!< --raw-*: the layout of `dataset` if it is a headerless .raw file
   int nodes = 8;
   std::string partition = "kd";
   std::string composite = "binary-swap";

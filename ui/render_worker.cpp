@@ -59,7 +59,7 @@ void BackgroundThreads::on_scheduler_entry(bool isWorker) {
   if (isWorker) lowerThreadPriority();
 }
 
-std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data) {
+std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data, const RawLayout& layout) {
   const std::string name = data.substr(0, data.find(':'));
   const std::vector<std::string> names = datasetNames();
   if (std::find(names.begin(), names.end(), name) != names.end()) return openDataset(data);
@@ -71,7 +71,7 @@ std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data) {
   std::error_code ec;
   if (!std::filesystem::exists(std::filesystem::status(data, ec)))
     throw Error("\"" + data + "\": no such file, and not " + builtIn);
-  return openVolumeFile(data);
+  return openVolumeFile(data, layout);
 }
 
 RenderWorker::RenderWorker() : worker_([this] { run(); }) {}
@@ -157,7 +157,8 @@ bool RenderWorker::ensureScene(const SceneSpec& spec) {
   }
   try {
     const double start = nowSeconds();
-    std::shared_ptr<const VolumeSource> source = openVolumeSpec(spec.data);
+    std::shared_ptr<const VolumeSource> source =
+        openVolumeSpec(spec.data, spec.data == spec.rawPath ? spec.raw : RawLayout{});
     auto cluster = std::make_unique<VirtualCluster>(*source, spec.cluster);
     auto scene = std::make_shared<SceneSnapshot>();
     scene->spec = spec;

@@ -16,6 +16,7 @@
 
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
+#include "core/volume/reader.h"
 #include "ui/frame_pixels.h"
 #include "ui/histogram.h"
 
@@ -24,6 +25,10 @@ namespace kdswap {
 //! What a cluster is built from; changing any of it rebuilds the cluster.
 struct SceneSpec {
   std::string data = kDefaultDatasetSpec;  //!< built-in data set spec ("phantom:128") or a file path
+  //! The --raw-* layout given on the command line for the headerless .raw file `rawPath`: used
+  //! whenever `data` names that file (also when chosen again later), never for other data.
+  std::string rawPath;
+  RawLayout raw;
   ClusterOptions cluster;
   static constexpr const char* kDefaultDatasetSpec = "phantom:128";
   bool sameScene(const SceneSpec& o) const;
@@ -121,6 +126,6 @@ class BackgroundThreads : public tbb::task_scheduler_observer {
 };
 
 //! Opens `data` as a built-in data set ("name[:size]") when the name is one, else as a file.
-std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data);
+std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data, const RawLayout& layout = {});
 
 }  // namespace kdswap

@@ -38,6 +38,10 @@ nlohmann::json describeState(const GuiState& state) {
   j["frame"] = state.frame ? describeFrame(*state.frame, state) : nlohmann::json();
   j["full_frame"] = state.fullFrame ? describeFrame(*state.fullFrame, state) : nlohmann::json();
   j["frames_shown"] = state.shownLog.size();
+  if (state.sceneShown) {
+    const VolumeInfo& info = state.sceneShown->info;
+    j["data"] = {{"spec", state.sceneShown->spec.data}, {"dims", {info.dims.x, info.dims.y, info.dims.z}}, {"type", info.type}};
+  }
   nlohmann::json points = nlohmann::json::array();
   for (const ImVec2& p : state.layout.tfPoints) points.push_back({p.x, p.y});
   const DrawnLayout::Shown &tip = state.layout.tooltip, &big = state.layout.enlarged;

@@ -36,7 +36,7 @@ NamedLayout layoutFromName(const std::string& path) {
 std::string missingLayout(bool noDims, bool noType, bool rawOptions) {
   const std::string types = "TYPE: " + scalarTypeList();
   const std::string name = "NAME_WxHxD_TYPE.raw, e.g. head_256x256x113_uint16.raw (" + types + ")";
-  if (!rawOptions)  // the GUI: no --raw-* options
+  if (!rawOptions)  // a file opened in the desktop app's panel: no --raw-* options there
     return std::string(noDims && noType ? "no dimensions and no sample type" : noDims ? "no dimensions" : "no sample type") +
            ": rename it " + name + ", or describe it with a .nhdr header";
   if (noDims && noType) return "give --raw-dims WxHxD and --raw-type TYPE, or name it " + name;

@@ -1,0 +1,31 @@
+# kdswap-gui opens a headerless .raw file with the --raw-* options, and without them says which
+# options are missing. Called by CTest with -DXVFB_RUN= -DGUI= -DOUT= (see ui/CMakeLists.txt).
+file(MAKE_DIRECTORY ${OUT})
+# 8 x 8 x 8 uint8 voxels whose name gives no layout: 512 bytes of text make a varying volume.
+string(REPEAT "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdef" 16 voxels)
+file(WRITE ${OUT}/scan.raw "${voxels}")
+set(state ${OUT}/state.json)
+file(REMOVE ${state})
+set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --dataset scan.raw --raw-dims 8x8x8 --raw-type uint8
+            --nodes 4 --screenshot ${OUT}/shot.png --frames 5 --dump-state ${state})
+execute_process(COMMAND ${command} WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
+string(REPLACE ";" " " shown "${command}")
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "kdswap-gui exited with ${result}: ${err}\nreproduce with:\n  ${shown}")
+endif()
+file(READ ${state} json)
+string(JSON spec GET "${json}" final data spec)
+string(JSON type GET "${json}" final data type)
+string(JSON dims GET "${json}" final data dims)
+string(REGEX REPLACE "[ \n\t]" "" dims "${dims}")
+if(NOT spec STREQUAL "scan.raw" OR NOT type STREQUAL "uint8" OR NOT dims STREQUAL "[8,8,8]")
+  message(FATAL_ERROR "expected scan.raw as 8x8x8 uint8 on screen, the state says ${spec} ${dims} ${type}")
+endif()
+
+# Without the layout: one line naming the options, exit code 2.
+execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --dataset scan.raw --screenshot
+                        ${OUT}/none.png --frames 5
+                WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
+if(NOT result EQUAL 2 OR NOT err MATCHES "scan.raw: raw file layout unknown: give --raw-dims WxHxD and --raw-type TYPE")
+  message(FATAL_ERROR "a raw file without layout: expected exit 2 naming --raw-dims and --raw-type, got ${result}: ${err}")
+endif()
