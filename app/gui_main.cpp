@@ -1,9 +1,6 @@
 // kdswap-gui: the desktop app (GLFW + Dear ImGui). Parses the options and runs ui/gui_app.
-#include <algorithm>
 #include <cstdio>
 #include <exception>
-#include <string>
-#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -74,9 +71,7 @@ int main(int argc, char** argv) {
     if (app.count("--frames") && o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
     if (!o.screenshot.empty() && o.frames == 0 && o.script.empty()) o.frames = 30;
     if (!o.layout.empty() && o.screenshot.empty()) throw kdswap::Error("--layout needs --screenshot");
-    const std::vector<std::string> names = kdswap::datasetNames();
-    if (std::find(names.begin(), names.end(), o.dataset.substr(0, o.dataset.find(':'))) != names.end())
-      kdswap::checkNoRawLayout(raw, "--dataset " + o.dataset);
+    if (kdswap::isDatasetSpec(o.dataset)) kdswap::checkNoRawLayout(raw, "--dataset " + o.dataset);
     o.raw = kdswap::parseRawLayout(raw);  // also without --raw-*: a raw file missing its layout then names them
     return kdswap::runGui(o);
   } catch (const CLI::CallForHelp& e) {

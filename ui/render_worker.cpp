@@ -60,12 +60,10 @@ void BackgroundThreads::on_scheduler_entry(bool isWorker) {
 }
 
 std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data, const RawLayout& layout) {
-  const std::string name = data.substr(0, data.find(':'));
-  const std::vector<std::string> names = datasetNames();
-  if (std::find(names.begin(), names.end(), name) != names.end()) return openDataset(data);
+  if (isDatasetSpec(data)) return openDataset(data);
   // Neither a built-in name nor a file: say what would have been accepted.
   std::string builtIns;
-  for (const std::string& n : names) builtIns += (builtIns.empty() ? "" : ", ") + n;
+  for (const std::string& n : datasetNames()) builtIns += (builtIns.empty() ? "" : ", ") + n;
   const std::string builtIn = "a built-in data set NAME[:SIZE] (" + builtIns + "; e.g. phantom:128)";
   if (data.empty()) throw Error("no data set given: expected " + builtIn + " or a volume file");
   std::error_code ec;

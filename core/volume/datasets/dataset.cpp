@@ -1,6 +1,7 @@
 // The registry of built-in data sets: the only list of them.
 #include "core/volume/datasets/dataset.h"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <sstream>
@@ -59,6 +60,11 @@ std::vector<std::string> datasetNames() {
   std::vector<std::string> names;
   for (const auto& [name, entry] : registry()) names.push_back(name);
   return names;
+}
+
+bool isDatasetSpec(const std::string& spec) {
+  const std::vector<std::string> names = datasetNames();
+  return std::find(names.begin(), names.end(), spec.substr(0, spec.find(':'))) != names.end();
 }
 
 std::unique_ptr<VolumeSource> openDataset(const std::string& spec) {
