@@ -1,11 +1,16 @@
-// 3D Shepp-Logan phantom: ten ellipsoids, intensities added where they overlap. Edges are
-// smoothed over about one voxel so that trilinear sampling shows no staircase.
+// 3D Shepp-Logan phantom: ten ellipsoids, intensities added where they overlap. Each edge is a
+// smooth step three voxels wide, measured as a distance from the surface, so that trilinear
+// sampling shows neither a staircase nor contour rings: the skull is a shell only two or three
+// voxels thick, and with a linear ramp 1.5 voxels wide its sampled peak (hence its opacity and
+// shading) depended on where the voxel grid cut it, which drew rings around the poles of the head.
 // Ellipsoid table: Kak & Slaney, "Principles of Computerized Tomographic Imaging", 3D extension,
 // with the higher-contrast "modified" intensities (Toft) commonly used for visualisation.
 #include "core/volume/datasets/phantom.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include <glm/geometric.hpp>
 
 #include "core/volume/datasets/procedural_source.h"
 
@@ -33,21 +38,34 @@ constexpr Ellipsoid kEllipsoids[] = {
     {0.1f, {0.0230f, 0.046f, 0.020f}, {0.06f, -0.605f, 0.0f}, 0.0f},
 };
 
-float phantomValue(const glm::vec3& p, float edge) {
+//! Width of an edge in voxels (of each axis's own voxels).
+constexpr float kEdgeVoxels = 3.0f;
+
+//! Value at p in unit coordinates ([-1, 1] per axis); `voxel` is one voxel's size there per axis.
+float phantomValue(const glm::vec3& p, const glm::vec3& voxel) {
+  const float halfEdge = 0.5f * kEdgeVoxels;
+  const float largestVoxel = std::max({voxel.x, voxel.y, voxel.z});
   float value = 0.0f;
   for (const Ellipsoid& e : kEllipsoids) {
     const glm::vec3 d = p - e.centre;
-    // The soft indicator below is 0 for r >= 1 + width / 2, and r >= |d| / (largest semi-axis).
-    const float width = edge / std::min({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z});
-    const float reach = std::max({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z}) * (1.0f + 0.5f * width) * 1.001f;
-    if (d.x * d.x + d.y * d.y + d.z * d.z > reach * reach) continue;  // outside its reach: contributes 0
+    const float longest = std::max({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z});
+    const float shortest = std::min({e.semiAxes.x, e.semiAxes.y, e.semiAxes.z});
+    // Beyond this the distance estimate below is at least halfEdge voxels: the step is 0 there.
+    // (r >= |d| / longest and r / |grad r| >= shortest give estimate >= (|d| - longest) * shortest / longest.)
+    const float reach = longest + halfEdge * largestVoxel * longest / shortest;
+    if (glm::dot(d, d) >= reach * reach) continue;
     const float c = std::cos(e.rotationDeg * 3.14159265f / 180.0f), s = std::sin(e.rotationDeg * 3.14159265f / 180.0f);
-    const glm::vec3 q(c * d.x + s * d.y, -s * d.x + c * d.y, d.z);
-    const float r = std::sqrt((q.x * q.x) / (e.semiAxes.x * e.semiAxes.x) + (q.y * q.y) / (e.semiAxes.y * e.semiAxes.y) +
-                              (q.z * q.z) / (e.semiAxes.z * e.semiAxes.z));
-    // Soft indicator: 1 inside, 0 outside, linear across about one voxel at the surface.
-    const float inside = std::clamp((1.0f - r) / width + 0.5f, 0.0f, 1.0f);
-    value += e.intensity * inside;
+    const glm::vec3 q(c * d.x + s * d.y, -s * d.x + c * d.y, d.z);  // in the ellipsoid's axes
+    const glm::vec3 n = q / (e.semiAxes * e.semiAxes);
+    const float r = std::sqrt(glm::dot(q, n));  // 1 on the surface
+    // Signed distance from the surface in voxels, to first order: (r - 1) / |grad r|, the gradient
+    // (n / r, turned back to the volume's axes) measured per voxel of each axis.
+    const glm::vec3 gradient = glm::vec3(c * n.x - s * n.y, s * n.x + c * n.y, n.z) * voxel;
+    const float length = glm::length(gradient);
+    const float distance = length > 0.0f ? (r - 1.0f) * r / length : -halfEdge;  // the centre is inside
+    // 1 inside, 0 outside, a smoothstep (continuous slope) across the edge.
+    const float t = std::clamp(0.5f - 0.5f * distance / halfEdge, 0.0f, 1.0f);
+    value += e.intensity * t * t * (3.0f - 2.0f * t);
   }
   return std::clamp(value, 0.0f, 1.0f);
 }
@@ -62,15 +80,17 @@ std::unique_ptr<VolumeSource> makePhantom(const glm::ivec3& dims) {
   info.maxValue = 1.0f;
   info.name = "phantom";
   info.preset = "phantom";
-  const float edge = 3.0f / float(std::max({dims.x, dims.y, dims.z}) - 1);  // 1.5 voxels: no moire on the thin skull
-  return std::make_unique<ProceduralSource>(info, [dims, edge](const VoxelBox& box, float* out) {
+  // unitCoordinate's step per axis (a one-voxel axis has none: any width will do there).
+  const glm::vec3 voxel(dims.x > 1 ? 2.0f / float(dims.x - 1) : 2.0f, dims.y > 1 ? 2.0f / float(dims.y - 1) : 2.0f,
+                        dims.z > 1 ? 2.0f / float(dims.z - 1) : 2.0f);
+  return std::make_unique<ProceduralSource>(info, [dims, voxel](const VoxelBox& box, float* out) {
     const glm::ivec3 s = box.size();
     for (int z = 0; z < s.z; ++z)
       for (int y = 0; y < s.y; ++y)
         for (int x = 0; x < s.x; ++x) {
           const glm::vec3 p(unitCoordinate(box.lo.x + x, dims.x), unitCoordinate(box.lo.y + y, dims.y),
                             unitCoordinate(box.lo.z + z, dims.z));
-          out[(std::size_t(z) * s.y + y) * s.x + x] = phantomValue(p, edge);
+          out[(std::size_t(z) * s.y + y) * s.x + x] = phantomValue(p, voxel);
         }
   });
 }
