@@ -47,8 +47,9 @@ int main(int argc, char** argv) {
   app.add_option("--script", o.script,
                  "Play synthetic mouse and keyboard input from FILE, then exit. One command a line, # comments: "
                  "move TARGET; glide DX DY FRAMES; down|up|click left|right|middle; wheel STEPS; key LETTER; "
-                 "frames N; wait full|preview; checkpoint NAME; verify-redraw. TARGET: viewport FX FY (fractions "
-                 "of the image), cell NODE PHASE, tf-point K, at X Y (window pixels)");
+                 "type TEXT; frames N; wait full|preview; checkpoint NAME; verify-redraw. TARGET: viewport FX FY "
+                 "(fractions of the image), cell NODE PHASE, tf-point K, item NAME (a named widget, e.g. data-path, "
+                 "open, raw-dims-0), at X Y (window pixels)");
   app.add_option("--dump-state", o.dumpState,
                  "At exit write the view, transfer function, layout, frames shown and the script's checkpoints as JSON "
                  "(checkpoint pictures go beside it)");

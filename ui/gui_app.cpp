@@ -24,6 +24,7 @@
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
+#include "core/volume/readers/raw_reader.h"
 #include "ui/damage_renderer.h"
 #include "ui/frame_clock.h"
 #include "ui/input_script.h"
@@ -73,6 +74,10 @@ std::string presetFor(const std::string& data) {
 void initState(GuiState& state, const GuiOptions& o) {
   state.scene.data = o.dataset;
   state.scene.rawPath = o.dataset, state.scene.raw = o.raw;
+  if (isRawFile(o.dataset)) {
+    state.rawLayouts[o.dataset] = o.raw;
+    state.settings.typedData = o.dataset;  // its layout fields show what it was opened with
+  }
   state.scene.cluster.nodes = o.nodes;
   state.scene.cluster.partition = parsePartition(o.partition);
   checkStrategyName(o.composite);

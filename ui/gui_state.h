@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 
 #include "core/cluster/frame_request.h"
 #include "ui/gl_texture.h"
+#include "ui/raw_layout_fields.h"
 #include "ui/render_worker.h"
 #include "ui/sweep_worker.h"
 
@@ -34,6 +37,9 @@ struct DrawnLayout {
   };
   Shown tooltip;   //!< the stage cell whose tooltip was drawn (rect: the tooltip window)
   Shown enlarged;  //!< the stage cell shown enlarged (rect: the enlarged picture)
+  //! Widgets a script reaches by name (`move item raw-dims-0`): the settings panel's data path,
+  //! Open button and raw-layout fields, and the entries of an open combo ("raw-type:uint16").
+  std::map<std::string, ImVec4> items;
 };
 
 //! A frame the viewport started showing (for --dump-state and the interaction test).
@@ -66,6 +72,8 @@ struct TimelineUi {
 
 struct SettingsUi {
   std::string typedData;  //!< the path or spec being typed
+  RawLayoutFields raw;    //!< shown while typedData is a .raw file
+  std::optional<std::string> rawFilledFor;  //!< the typedData `raw` was last filled for
   int nodes = 0;          //!< the node count while its slider is dragged
   int bricksPerNode = 0;  //!< bricks per node while its slider is dragged
 };
@@ -103,6 +111,9 @@ struct GuiState {
   TimelineUi timeline;
   SweepWorker* sweep = nullptr;
   std::vector<std::string> dataChoices;  //!< built-in specs, then files found
+  //! Per .raw path, the layout last given for it (--raw-* for the start-up file, the data panel's
+  //! fields on Open): the file opens with it whenever chosen again, and the fields show it.
+  std::map<std::string, RawLayout> rawLayouts;
   DrawnLayout layout;
 };
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -23,7 +24,7 @@ struct Shape {
 };
 constexpr Shape kShapes[] = {{"move", 1, 3}, {"glide", 3, 3}, {"down", 1, 1}, {"up", 1, 1}, {"click", 1, 1},
                              {"wheel", 1, 1}, {"key", 1, 1},  {"frames", 1, 1}, {"wait", 1, 1}, {"checkpoint", 1, 1},
-                             {"verify-redraw", 0, 0}};
+                             {"verify-redraw", 0, 0}, {"type", 1, SIZE_MAX}};
 
 int buttonIndex(const std::string& name) {
   if (name == "left") return ImGuiMouseButton_Left;
@@ -82,6 +83,7 @@ void InputScript::apply(ImGuiIO& io) const {
   for (int b = 0; b < 3; ++b) io.MouseDown[b] = down_[b];
   io.MouseWheel = wheel_;
   for (int k = GLFW_KEY_A; k <= GLFW_KEY_Z; ++k) io.KeysDown[k] = k == key_;
+  if (!text_.empty()) io.AddInputCharactersUTF8(text_.c_str());
 }
 
 ImVec2 InputScript::target(const Command& c, const GuiState& state) const {
@@ -103,10 +105,15 @@ ImVec2 InputScript::target(const Command& c, const GuiState& state) const {
     const std::size_t k = std::size_t(arg(1));
     if (k >= state.layout.tfPoints.size()) fail(c, "no opacity point " + c.args[1]);
     p = state.layout.tfPoints[k];
+  } else if (kind == "item") {
+    if (c.args.size() != 2) fail(c, "expected one name after 'item'");
+    const auto it = state.layout.items.find(c.args[1]);
+    if (it == state.layout.items.end()) fail(c, "no widget named '" + c.args[1] + "' is drawn");
+    p = ImVec2(it->second.x + 0.5f * it->second.z, it->second.y + 0.5f * it->second.w);
   } else if (kind == "at") {
     p = ImVec2(arg(1), arg(2));
   } else {
-    fail(c, "unknown target '" + kind + "' (viewport, cell, tf-point, at)");
+    fail(c, "unknown target '" + kind + "' (viewport, cell, tf-point, item, at)");
   }
   if (!ok) fail(c, "expected numbers after the target");
   return p;
@@ -114,8 +121,9 @@ ImVec2 InputScript::target(const Command& c, const GuiState& state) const {
 
 InputScript::Step InputScript::advance(const GuiState& state, double now) {
   Step out;
-  wheel_ = 0;  // wheel and key events last one frame
+  wheel_ = 0;  // wheel, key and text events last one frame
   key_ = -1;
+  text_.clear();
   if (next_ >= commands_.size()) {
     out.finished = true;
     return out;
@@ -149,6 +157,8 @@ InputScript::Step InputScript::advance(const GuiState& state, double now) {
     wheel_ = number(c.args[0], ok);
   } else if (c.verb == "key") {
     key_ = GLFW_KEY_A + (std::toupper(static_cast<unsigned char>(c.args[0][0])) - 'A');
+  } else if (c.verb == "type") {
+    for (const std::string& word : c.args) text_ += (text_.empty() ? "" : " ") + word;
   } else if (c.verb == "frames") {
     if (first) framesLeft_ = int(number(c.args[0], ok));
     done = --framesLeft_ <= 0;

@@ -7,6 +7,8 @@
 //   down|up|click BUTTON     left, right or middle; click is down for one frame, then up
 //   wheel STEPS              one wheel event (positive: away from the user, zooms in)
 //   key K                    press and release a letter key (R resets the view)
+//   type TEXT                type TEXT (the rest of the line, single spaces) into the widget
+//                            with keyboard focus, as one frame's characters
 //   frames N                 let N UI frames pass
 //   wait full|preview        until the full-quality frame of the latest request is shown and
 //                            nothing is rendering or pending; or until a preview is on screen
@@ -17,7 +19,10 @@
 //                            count pixels differing from the partially redrawn one (DamageRenderer)
 //
 // Targets: `viewport FX FY` (fractions of the displayed image), `cell NODE PHASE` (centre of a
-// compositing-stage cell), `tf-point K` (opacity control point K), `at X Y` (window pixels).
+// compositing-stage cell), `tf-point K` (opacity control point K), `item NAME` (centre of a widget
+// drawn this frame: data-path, open, and for a .raw path raw-dims-0..2, raw-type, raw-endian,
+// raw-spacing-0..2, raw-skip; an open combo's entries as raw-type:uint16, raw-endian:big), `at X Y`
+// (window pixels).
 // `#` starts a comment.
 #pragma once
 
@@ -71,6 +76,7 @@ class InputScript {
   bool down_[3] = {false, false, false};
   float wheel_ = 0;
   int key_ = -1;                //!< GLFW key code held this frame
+  std::string text_;            //!< characters typed this frame
 };
 
 }  // namespace kdswap

@@ -28,7 +28,10 @@ constexpr int kStageCellSide = 192;
 
 bool SceneSpec::sameScene(const SceneSpec& o) const {
   const ClusterOptions &a = cluster, &b = o.cluster;
-  return data == o.data && a.nodes == b.nodes && a.partition == b.partition && a.slabAxis == b.slabAxis &&
+  // The layout matters only for the file it describes; a corrected one must open the file again.
+  const bool raw = data == rawPath, otherRaw = o.data == o.rawPath;
+  return data == o.data && raw == otherRaw && (!raw || this->raw == o.raw) && a.nodes == b.nodes &&
+         a.partition == b.partition && a.slabAxis == b.slabAxis &&
          a.strategy == b.strategy && a.threads == b.threads && a.bricksPerNode == b.bricksPerNode &&
          a.balance == b.balance &&
          (a.balance != "cost" || a.balanceTransfer.toJson() == b.balanceTransfer.toJson());

@@ -25,8 +25,8 @@ namespace kdswap {
 //! What a cluster is built from; changing any of it rebuilds the cluster.
 struct SceneSpec {
   std::string data = kDefaultDatasetSpec;  //!< built-in data set spec ("phantom:128") or a file path
-  //! The --raw-* layout given on the command line for the headerless .raw file `rawPath`: used
-  //! whenever `data` names that file (also when chosen again later), never for other data.
+  //! The layout given for the headerless .raw file `rawPath` (--raw-* on the command line, or the
+  //! data panel's fields): used whenever `data` names that file, never for other data.
   std::string rawPath;
   RawLayout raw;
   ClusterOptions cluster;

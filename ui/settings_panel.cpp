@@ -13,7 +13,9 @@
 #include "core/cluster/virtual_cluster.h"
 #include "core/composite/registry.h"
 #include "core/util/error.h"
+#include "core/volume/readers/raw_reader.h"
 #include "ui/panels.h"
+#include "ui/raw_layout_fields.h"
 
 namespace kdswap {
 namespace {
@@ -53,17 +55,85 @@ std::string choiceLabel(const std::string& choice, const std::vector<std::string
   return name.empty() ? choice : name;
 }
 
+//! Records where the last widget was drawn, under `name`, for scripts (`move item NAME`).
+void markItem(GuiState& state, const std::string& name) {
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  state.layout.items[name] = ImVec4(a.x, a.y, b.x - a.x, b.y - a.y);
+}
+
+//! Makes `data` the scene's data, opened with the raw layout given for it if there is one.
+void chooseData(GuiState& state, const std::string& data) {
+  SceneSpec& scene = state.scene;
+  scene.data = data;
+  if (const auto it = state.rawLayouts.find(data); it != state.rawLayouts.end()) scene.rawPath = data, scene.raw = it->second;
+  state.tfEdited = false;  // a new data set brings its own preset
+  state.requestFrame(false);
+}
+
+//! `count` numbers side by side across the item width. Unlike ImGui's InputInt3 each is a widget
+//! of its own, marked NAME-0, NAME-1, ... so that a script can click one.
+void inputRow(GuiState& state, const char* label, const char* name, ImGuiDataType type, void* values, std::size_t size,
+              int count, const char* format) {
+  const std::string id = field(label);
+  const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+  const float width = std::max(20.0f, (ImGui::CalcItemWidth() - spacing * float(count - 1)) / float(count));
+  ImGui::PushID(id.c_str());
+  for (int i = 0; i < count; ++i) {
+    if (i > 0) ImGui::SameLine(0, spacing);
+    ImGui::PushID(i);
+    ImGui::SetNextItemWidth(width);
+    ImGui::InputScalar("##value", type, static_cast<char*>(values) + std::size_t(i) * size, nullptr, nullptr, format);
+    markItem(state, std::string(name) + "-" + std::to_string(i));
+    ImGui::PopID();
+  }
+  ImGui::PopID();
+  if (!gNarrow) {
+    ImGui::SameLine(0, spacing);
+    ImGui::TextUnformatted(label);
+  }
+}
+
+//! A combo over `entries`, marked NAME while closed and each entry NAME:ENTRY while open (the last
+//! item then is the popup). True when an entry was chosen.
+bool markedCombo(GuiState& state, const char* label, const char* name, int& current, const std::vector<std::string>& entries) {
+  bool chosen = false;
+  if (!ImGui::BeginCombo(field(label).c_str(), entries[std::size_t(current)].c_str())) {
+    markItem(state, name);
+    return false;
+  }
+  for (int i = 0; i < int(entries.size()); ++i) {
+    if (ImGui::Selectable(entries[std::size_t(i)].c_str(), i == current)) current = i, chosen = true;
+    markItem(state, std::string(name) + ":" + entries[std::size_t(i)]);
+  }
+  ImGui::EndCombo();
+  return chosen;
+}
+
+// The layout of the headerless .raw file whose path is typed: a file has none of its own. The
+// fields are not checked here; opening the file refuses a wrong layout with the reader's message.
+void drawRawLayoutFields(GuiState& state) {
+  RawLayoutFields& f = state.settings.raw;
+  ImGui::TextDisabled("raw file layout");
+  inputRow(state, "dims", "raw-dims", ImGuiDataType_S32, f.dims, sizeof f.dims[0], 3, "%d");
+  std::vector<std::string> types;
+  for (int t = 0; t < kScalarTypeCount; ++t) types.emplace_back(scalarTypeName(ScalarType(t)));
+  int type = int(f.type);
+  if (markedCombo(state, "voxel type", "raw-type", type, types)) f.type = ScalarType(type);
+  int order = f.bigEndian ? 1 : 0;
+  if (markedCombo(state, "byte order", "raw-endian", order, {"little", "big"})) f.bigEndian = order == 1;
+  inputRow(state, "spacing", "raw-spacing", ImGuiDataType_Float, f.spacing, sizeof f.spacing[0], 3, "%g");
+  ImGui::InputScalar(field("header bytes").c_str(), ImGuiDataType_U64, &f.headerBytes);
+  markItem(state, "raw-skip");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("bytes to skip at the start of the file");
+}
+
 void drawDataSection(GuiState& state) {
   SceneSpec& scene = state.scene;
   const std::string current = choiceLabel(scene.data, state.dataChoices);
   if (ImGui::BeginCombo(field("data").c_str(), fitText(current, ImGui::CalcItemWidth() - ImGui::GetFrameHeight() - 8).c_str())) {
     for (const std::string& choice : state.dataChoices) {
       const std::string shown = choiceLabel(choice, state.dataChoices), label = shown + "##" + choice;
-      if (ImGui::Selectable(label.c_str(), choice == scene.data)) {
-        scene.data = choice;
-        state.tfEdited = false;  // a new data set brings its own preset
-        state.requestFrame(false);
-      }
+      if (ImGui::Selectable(label.c_str(), choice == scene.data)) chooseData(state, choice);
       if (ImGui::IsItemHovered() && shown != choice) ImGui::SetTooltip("%s", choice.c_str());
     }
     ImGui::EndCombo();
@@ -76,11 +146,20 @@ void drawDataSection(GuiState& state) {
   const float open = buttonWidth("Open") + ImGui::GetStyle().ItemSpacing.x;
   ImGui::SetNextItemWidth(std::max(40.0f, ImGui::GetContentRegionAvail().x - open));
   const bool entered = ImGui::InputTextWithHint("##path", "path or name:size", &typed, ImGuiInputTextFlags_EnterReturnsTrue);
+  markItem(state, "data-path");
   ImGui::SameLine();
-  if ((ImGui::Button("Open") || entered) && !typed.empty()) {
-    scene.data = typed;
-    state.tfEdited = false;
-    state.requestFrame(false);
+  const bool clicked = ImGui::Button("Open");
+  markItem(state, "open");
+  // A newly typed path shows what is known of its layout; an unknown one keeps what is typed.
+  if (state.settings.rawFilledFor != typed) {
+    state.settings.rawFilledFor = typed;
+    if (auto known = knownRawLayout(typed, state.rawLayouts)) state.settings.raw = *known;
+  }
+  const bool raw = isRawFile(typed);
+  if (raw) drawRawLayoutFields(state);
+  if ((clicked || entered) && !typed.empty()) {
+    if (raw) state.rawLayouts[typed] = toRawLayout(state.settings.raw);
+    chooseData(state, typed);
   }
   if (state.sceneShown) {
     const VolumeInfo& info = state.sceneShown->info;
@@ -198,6 +277,7 @@ void drawRenderSection(GuiState& state) {
 }  // namespace
 
 void drawSettingsPanel(GuiState& state) {
+  state.layout.items.clear();  // only what is drawn this frame can be clicked
   if (!ImGui::Begin("Settings")) {
     ImGui::End();
     return;
@@ -206,7 +286,8 @@ void drawSettingsPanel(GuiState& state) {
   // of the panel, labels go above the widgets instead.
   float label = 0;
   for (const char* text : {"data", "nodes", "partition", "compositing", "load balance", "bricks per node", "image size", "step (voxels)",
-                           "early termination", "projection", "up axis", "field of view"})
+                           "early termination", "projection", "up axis", "field of view", "dims", "voxel type", "byte order",
+                           "spacing", "header bytes"})
     label = std::max(label, ImGui::CalcTextSize(text).x);
   const float avail = ImGui::GetContentRegionAvail().x;
   const float beside = avail - label - ImGui::GetStyle().ItemInnerSpacing.x - 2;

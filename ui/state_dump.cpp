@@ -40,7 +40,11 @@ nlohmann::json describeState(const GuiState& state) {
   j["frames_shown"] = state.shownLog.size();
   if (state.sceneShown) {
     const VolumeInfo& info = state.sceneShown->info;
-    j["data"] = {{"spec", state.sceneShown->spec.data}, {"dims", {info.dims.x, info.dims.y, info.dims.z}}, {"type", info.type}};
+    j["data"] = {{"spec", state.sceneShown->spec.data},
+                 {"dims", {info.dims.x, info.dims.y, info.dims.z}},
+                 {"type", info.type},
+                 {"spacing", {info.spacing.x, info.spacing.y, info.spacing.z}},
+                 {"range", {info.minValue, info.maxValue}}};
   }
   nlohmann::json points = nlohmann::json::array();
   for (const ImVec2& p : state.layout.tfPoints) points.push_back({p.x, p.y});

@@ -23,6 +23,7 @@ struct RawLayout {
   //! The command has --raw-dims and --raw-type: a missing layout names them, else only the file-name
   //! pattern and a header describe a raw file. Not part of the layout itself.
   bool rawOptions = false;
+  bool operator==(const RawLayout&) const = default;
 };
 
 class Reader {

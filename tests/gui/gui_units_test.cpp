@@ -1,11 +1,12 @@
 // The GUI's logic that needs no window: the histogram under the transfer-function editor, the
-// speedup sweep's warm-up and medians, error text safe to print, the data-set error messages, and
-// the timeline's bars, rows and ticks.
+// speedup sweep's warm-up and medians, error text safe to print, the data-set error messages, the
+// data panel's raw-layout fields, and the timeline's bars, rows and ticks.
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "core/volume/datasets/dataset.h"
 #include "core/volume/memory_volume.h"
 #include "ui/histogram.h"
+#include "ui/raw_layout_fields.h"
 #include "core/util/printable_text.h"
 #include "ui/render_worker.h"
 #include "ui/sweep_worker.h"
@@ -61,6 +63,56 @@ TEST_CASE("gui scene: load balance and bricks per node rebuild the cluster, othe
   // With halved space the transfer function kept for cost balance does not matter.
   c.cluster.balance = b.cluster.balance = "space";
   CHECK(b.sameScene(c));
+}
+
+TEST_CASE("gui scene: a new layout for the raw file shown rebuilds it, a layout for another file does not") {
+  SceneSpec a;
+  a.data = a.rawPath = "scan.raw";
+  a.raw.dims = glm::ivec3(8, 8, 5);
+  SceneSpec b = a;
+  b.raw.dims = glm::ivec3(8, 8, 4);
+  CHECK_FALSE(a.sameScene(b));  // also retries a layout that failed
+  a.data = b.data = "phantom:32";
+  CHECK(a.sameScene(b));
+}
+
+TEST_CASE("gui raw layout fields: filled from the layout given before, else from the file name, else left") {
+  const std::map<std::string, RawLayout> none;
+  const auto named = knownRawLayout("data/head_256x256x113_UINT16.RAW", none);
+  REQUIRE(named);
+  CHECK(named->dims[0] == 256);
+  CHECK(named->dims[2] == 113);
+  CHECK(named->type == ScalarType::Uint16);
+  CHECK_FALSE(named->bigEndian);
+  CHECK(named->spacing[2] == 1.0f);
+  CHECK(named->headerBytes == 0);
+  CHECK_FALSE(knownRawLayout("scan.raw", none));  // the user's fields stay
+  const auto huge = knownRawLayout("head_99999999999x2x2_uint8.raw", none);  // opening names the overflow
+  REQUIRE(huge);
+  CHECK(huge->dims[0] == 0);
+  CHECK(huge->type == ScalarType::Uint8);
+
+  // The start-up --raw-* options win over the name; what they leave out comes from it.
+  RawLayout given;
+  given.type = "float32";
+  given.bigEndian = true;
+  given.spacing = glm::vec3(1, 1, 2.5f);
+  given.headerBytes = 64;
+  const auto both = knownRawLayout("head_256x256x113_uint16.raw", {{"head_256x256x113_uint16.raw", given}});
+  REQUIRE(both);
+  CHECK(both->dims[1] == 256);
+  CHECK(both->type == ScalarType::Float32);
+  CHECK(both->bigEndian);
+  CHECK(both->spacing[2] == 2.5f);
+  CHECK(both->headerBytes == 64);
+
+  // Every field reaches the layout the file is opened with.
+  const RawLayout layout = toRawLayout(*both);
+  CHECK(layout.dims == glm::ivec3(256, 256, 113));
+  CHECK(layout.type == "float32");
+  CHECK(layout.bigEndian == true);
+  CHECK(layout.spacing == glm::vec3(1, 1, 2.5f));
+  CHECK(layout.headerBytes == 64);
 }
 
 TEST_CASE("gui histogram: integer values 0..254 get one bin each and no bin is empty") {

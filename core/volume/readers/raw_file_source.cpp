@@ -33,10 +33,11 @@ RawFileSource::RawFileSource(VolumeInfo info, StoredData data) : info_(std::move
     const std::uint64_t size = std::uint64_t(st.st_size);
     const std::uint64_t need = std::uint64_t(info_.voxelCount()) * scalarTypeSize(data_.type);
     const std::string layout = dimsText(info_.dims) + " " + std::string(scalarTypeName(data_.type));
-    if (size < data_.offset + need)
+    // Compared without adding to the offset: a skip typed in the desktop app can be near 2^64.
+    if (size < data_.offset || size - data_.offset < need)
       throw Error(label_ + ": truncated: " + layout + " needs " + std::to_string(need) + " bytes from byte " +
                   std::to_string(data_.offset) + ", the file has " + std::to_string(size));
-    if (size > data_.offset + need && !data_.allowTrailing)
+    if (size - data_.offset > need && !data_.allowTrailing)
       throw Error(label_ + ": header and data size disagree: " + layout + " needs " + std::to_string(need) +
                   " bytes from byte " + std::to_string(data_.offset) + ", the file has " + std::to_string(size));
     scanRange();

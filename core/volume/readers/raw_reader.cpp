@@ -1,7 +1,10 @@
 // Raw volume files: layout from RawLayout, else from the name pattern NAME_WxHxD_TYPE.raw.
 #include "core/volume/readers/raw_reader.h"
 
+#include <array>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <regex>
 
 #include "core/util/error.h"
@@ -16,19 +19,26 @@ struct NamedLayout {
   std::string type;
 };
 
-//! Reads "_WxHxD_TYPE" at the end of the file name's stem, if present.
-NamedLayout layoutFromName(const std::string& path) {
+//! The "_WxHxD_TYPE" at the end of the file name's stem, if present: W, H, D, TYPE as written.
+std::optional<std::array<std::string, 4>> namePattern(const std::string& path) {
   static const std::regex pattern(R"(_(\d+)x(\d+)x(\d+)_([a-z0-9]+)$)", std::regex::icase);
   const std::string stem = std::filesystem::path(path).stem().string();
   std::smatch m;
+  if (!std::regex_search(stem, m, pattern)) return std::nullopt;
+  return std::array<std::string, 4>{m[1].str(), m[2].str(), m[3].str(), lowercase(m[4].str())};
+}
+
+//! The name's layout for opening: sizes beyond 64 bits are an error (others are checked later).
+NamedLayout layoutFromName(const std::string& path) {
   NamedLayout named;
-  if (!std::regex_search(stem, m, pattern)) return named;
-  for (int i = 1; i <= 3; ++i) {
-    const auto v = parseInteger(m[i].str());
+  const auto parts = namePattern(path);
+  if (!parts) return named;
+  for (int i = 0; i < 3; ++i) {
+    const auto v = parseInteger((*parts)[i]);
     if (!v) throw Error(path + ": dimensions in the name overflow: expected sizes from 2 to 2147483647");
     named.sizes.push_back(*v);
   }
-  named.type = lowercase(m[4].str());
+  named.type = (*parts)[3];
   return named;
 }
 
@@ -36,7 +46,8 @@ NamedLayout layoutFromName(const std::string& path) {
 std::string missingLayout(bool noDims, bool noType, bool rawOptions) {
   const std::string types = "TYPE: " + scalarTypeList();
   const std::string name = "NAME_WxHxD_TYPE.raw, e.g. head_256x256x113_uint16.raw (" + types + ")";
-  if (!rawOptions)  // a file opened in the desktop app's panel: no --raw-* options there
+  if (!rawOptions)  // a caller without --raw-* options (a library user; the desktop app gives the
+                    // layout of a raw file from its data panel's fields)
     return std::string(noDims && noType ? "no dimensions and no sample type" : noDims ? "no dimensions" : "no sample type") +
            ": rename it " + name + ", or describe it with a .nhdr header";
   if (noDims && noType) return "give --raw-dims WxHxD and --raw-type TYPE, or name it " + name;
@@ -46,9 +57,25 @@ std::string missingLayout(bool noDims, bool noType, bool rawOptions) {
 
 }  // namespace
 
-bool RawReader::accepts(const std::string& path) const {
-  return lowercase(std::filesystem::path(path).extension().string()) == ".raw";
+bool isRawFile(const std::string& path) { return lowercase(std::filesystem::path(path).extension().string()) == ".raw"; }
+
+RawLayout rawLayoutFromName(const std::string& path) {
+  RawLayout layout;
+  const auto parts = namePattern(path);
+  if (!parts) return layout;
+  glm::ivec3 dims;
+  bool fits = true;
+  for (int i = 0; i < 3; ++i) {
+    const auto v = parseInteger((*parts)[i]);
+    fits = fits && v && *v <= std::numeric_limits<int>::max();
+    if (fits) dims[i] = int(*v);
+  }
+  if (fits) layout.dims = dims;
+  layout.type = (*parts)[3];
+  return layout;
 }
+
+bool RawReader::accepts(const std::string& path) const { return isRawFile(path); }
 
 std::unique_ptr<VolumeSource> RawReader::open(const std::string& path, const RawLayout& layout) const {
   const NamedLayout named = layoutFromName(path);

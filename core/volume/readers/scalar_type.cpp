@@ -10,6 +10,7 @@ namespace {
 
 constexpr std::string_view kNames[] = {"int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
 constexpr std::size_t kSizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+static_assert(std::size(kNames) == kScalarTypeCount && std::size(kSizes) == kScalarTypeCount);
 
 template <typename T>
 T loadSwapped(const unsigned char* p, bool swap) {

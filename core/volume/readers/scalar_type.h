@@ -10,6 +10,8 @@
 namespace kdswap {
 
 enum class ScalarType { Int8, Uint8, Int16, Uint16, Int32, Uint32, Float32, Float64 };
+//! ScalarType(0) .. ScalarType(kScalarTypeCount - 1) are every type, in scalarTypeList()'s order.
+inline constexpr int kScalarTypeCount = 8;
 
 //! "int8" ... "float64": the names VolumeInfo::type and RawLayout::type use.
 std::optional<ScalarType> parseScalarType(std::string_view name);
