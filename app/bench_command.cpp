@@ -43,7 +43,7 @@ struct BenchOptions {
   std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1", voxels = "auto";
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f;
-  bool sparse = false, micro = false, paper = false, targets = false;
+  bool sparse = false, waves = false, micro = false, paper = false, targets = false;
   bool headGiven = false;  //!< --head on the command line: then it must exist (the default may be absent)
   std::string gridOption;  //!< the first grid-only option given (--dataset, --sizes, ...), or ""
   bool framesGiven = false;
@@ -109,6 +109,7 @@ std::string commandLine(const BenchOptions& o) {
                 o.sizes.c_str(), o.nodes.c_str(), o.composite.c_str(), o.frames, double(o.degrees), double(o.step),
                 o.shading.c_str(), double(o.ert), o.view.c_str(), o.partition.c_str(), o.sparse ? " --sparse" : "",
                 o.threads);
+  if (o.waves) c += " --waves";
   return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --balance " + o.balance +
          (o.speeds.empty() ? "" : " --speeds " + o.speeds) + " --bricks-per-node " + o.bricksPerNode +
          " --network " + o.network + " --voxels " + o.voxels + " --out-dir " + o.outDir;
@@ -134,6 +135,7 @@ void runGrid(const BenchOptions& o) {
   g.base.settings.stepVoxels = o.step;
   g.base.settings.shading = parseOnOff(o.shading, "--shading");
   g.base.settings.earlyTermination = o.ert;
+  g.base.settings.frontToBackWaves = o.waves;
   g.cluster.partition = parsePartition(o.partition, "--partition");
   g.cluster.composite.sparse = o.sparse;
   checkThreads(o.threads);
@@ -319,6 +321,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)")->check(nonEmpty());
   cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
+  cmd->add_flag("--waves", o->waves, "Front-to-back waves: nodes render nearest first, stopping where those in front stopped the light (see kdswap render --help)");
   cmd->add_option("--balance", o->balance,
                   "Plane placements to compare: space, cost or space,cost (cost cells read STRATEGY+cost)")
       ->capture_default_str();
@@ -360,7 +363,7 @@ void addBenchCommand(CLI::App& app) {
     std::vector<CLI::Option*> options;
     for (const char* name : {"--dataset", "--volume", "--spacing", "--quantise", "--sizes", "--nodes", "--composite",
                              "--degrees", "--view", "--step", "--shading", "--ert", "--tf", "--partition", "--sparse",
-                             "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
+                             "--waves", "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
                              "--out-dir"})
       options.push_back(cmd->get_option(name));
     return options;

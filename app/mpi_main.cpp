@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
   kdswap::addClusterOptions(cmd, o.scene);
   // The virtual cluster's options that the MPI node program does not carry out: hidden from the
   // help and refused below, never silently ignored.
-  const char* const virtualOnly[] = {"--stall-timeout", "--checksums", "--node-execution", "--inject-fault"};
+  const char* const virtualOnly[] = {"--stall-timeout", "--checksums", "--node-execution", "--inject-fault", "--waves"};
   for (const char* name : virtualOnly) cmd->get_option(name)->group("");
   cmd->add_option("--nodes-per-rank,-k", o.nodesPerRank, "Virtual nodes K on each rank: P = ranks x K")
       ->capture_default_str();

@@ -224,6 +224,10 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
       ->capture_default_str();
   cmd->add_option("--partition", o.partition, "kd (alternating k-d tree) or slab")->capture_default_str();
   cmd->add_flag("--sparse", o.sparse, "Send only the bounding rectangle of non-empty pixels");
+  cmd->add_flag("--waves", o.waves,
+                "Front-to-back waves (beyond the paper): nodes render one after another, nearest first, each stopping "
+                "its rays where those in front stopped the light, so none samples behind the single-node ray's end "
+                "(replaces the occlusion map; with one brick per node)");
   cmd->add_option("--radices", o.radices,
                   "--composite radix-k only: group size of each round, e.g. 4,2 (each 2..4096, product = --nodes; default: prime factors of P in rounds of at most 8, e.g. 64 -> 8,8)")
       ->check(nonEmpty());
@@ -296,6 +300,7 @@ Scene buildScene(const SceneOptions& o) {
   r.settings.jitter = parseOnOff(o.jitter, "--jitter");
   checkErt(o.ert);
   r.settings.earlyTermination = o.ert;
+  r.settings.frontToBackWaves = o.waves;
   if (!o.range.empty()) r.settings.valueRange = parseValueRange(o.range, "--range");
   r.transfer = !o.tf.empty() ? loadTransferOption(o.tf) : loadTransferFunction(!info.preset.empty() ? info.preset : "grayscale");
 

@@ -39,6 +39,7 @@ struct SceneOptions {
   std::string composite = "binary-swap";
   std::string partition = "kd";
   bool sparse = false;
+  bool waves = false;  //!< front-to-back waves (RenderSettings::frontToBackWaves)
   std::string radices;  //!< radix-k group size per round, "4,2,..."; empty = prime factors of P
   int threads = 0;
   double stallSeconds = 60.0;

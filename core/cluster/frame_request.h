@@ -27,6 +27,8 @@ struct FrameRequest {
 };
 
 //! Immutable per-frame data every node computes identically from the request and the partition.
+struct RenderedBrick;  // node_program.h
+
 struct FramePlan {
   FramePlan(const FrameRequest& request, const KdTree& tree, const glm::vec3& spacing, glm::vec2 valueRange,
             const Strategy& strategy);
@@ -43,6 +45,9 @@ struct FramePlan {
   //! When set, each node adds 1 as its render step ends (before compositing): a progress display
   //! on a long frame reads it while the nodes work.
   std::atomic<int>* nodesRendered = nullptr;
+  //! Front-to-back waves: every rank's brick, already rendered nearest first (the node then only
+  //! composites it); null when each node renders its own brick as its first step.
+  std::vector<RenderedBrick>* waves = nullptr;
   Rect frame() const { return camera.frame(); }
 };
 

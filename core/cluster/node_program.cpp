@@ -182,6 +182,16 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
 
 }  // namespace
 
+RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, const FrontTransmittance* front) {
+  RenderedBrick out;
+  out.start = nowSeconds();
+  const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
+                         emptySpaceFor(node.brickEmptySpace, node.brick, plan), front);
+  out.image = caster.render(plan.camera, out.counters);
+  out.end = nowSeconds();
+  return out;
+}
+
 NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& plan, PhaseRecord* record) {
   NodeReport report;
   report.rank = comm.rank();
@@ -196,19 +206,18 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
   if (plan.bricks) {
     partial = renderPieces(node, comm, plan, report, observer);
   } else {
-    RenderCounters counters;
-    const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
-                           emptySpaceFor(node.brickEmptySpace, node.brick, plan));
-    partial = caster.render(plan.camera, counters);
+    RenderedBrick rendered =
+        plan.waves ? std::move((*plan.waves)[std::size_t(comm.rank())]) : renderOwnBrick(node, plan);
     // Keep only the rectangle the brick's rays reached: the pixels around it are empty ("over"
     // with an empty pixel changes nothing), and with every node's partial image alive at once
     // before compositing, those margins were most of a frame's memory at large P.
-    partial = trimToContent(std::move(partial));
-    report.renderEnd = nowSeconds();
-    report.renderSeconds = counters.seconds;
-    report.rays = counters.rays;
-    report.samples = counters.samples;
-    report.occluded = counters.occluded;
+    partial = trimToContent(std::move(rendered.image));
+    if (plan.waves) report.renderStart = rendered.start;  // rendered in its wave, before this task
+    report.renderEnd = plan.waves ? rendered.end : nowSeconds();
+    report.renderSeconds = rendered.counters.seconds;
+    report.rays = rendered.counters.rays;
+    report.samples = rendered.counters.samples;
+    report.occluded = rendered.counters.occluded;
     if (cells) cells->push_back(PhaseCell{"render", -1, partial.rect(), partial, 0});
   }
   observer.noteImage(partial);

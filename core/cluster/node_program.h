@@ -11,6 +11,8 @@
 #include "core/comm/communicator.h"
 #include "core/metrics/node_report.h"
 #include "core/render/empty_space_cache.h"
+#include "core/render/front_transmittance.h"
+#include "core/render/ray_caster.h"
 #include "core/volume/brick.h"
 
 namespace kdswap {
@@ -42,6 +44,18 @@ Message brickMessage(const VoxelBox& owned, const glm::ivec3& dims, const glm::v
 //! Receives one brick message (from the host, or `source`) and builds its gradients in the node's
 //! own memory: node.brick, or node.pieces[piece] for a sub-brick.
 void receiveBrick(NodeState& node, Communicator& comm, int source = Communicator::kHost);
+
+//! A node's brick rendered for one frame, with its counters and when it was rendered.
+struct RenderedBrick {
+  Image image;
+  RenderCounters counters;
+  double start = 0.0, end = 0.0;
+};
+
+//! Renders the node's own brick for `plan` (with its occlusion map, if any, and `front` in
+//! front-to-back waves). The node's first step each frame; in waves the cluster calls it for every
+//! node in visibility order before the nodes composite.
+RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, const FrontTransmittance* front = nullptr);
 
 //! Renders and composites one frame; sends the tile to the host. With `record` non-null, fills
 //! record->cells[rank] (this node's row only).

@@ -260,7 +260,10 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   // Culling never moves an image away from the single-node one (with --ert 1 it changes nothing;
   // with early termination it removes light that local termination keeps): it saves work, and
   // rests where it saved little (CullingRest).
-  const bool culling = request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1;
+  // Front-to-back waves replace the map (one brick per node; over-decomposed bricks are scheduled
+  // on demand, so they keep the map).
+  const bool waves = request.settings.frontToBackWaves && options_.nodes > 1 && layout_.perNode() == 1;
+  const bool culling = !waves && request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1;
   if (culling && cullingRest_.mapThisFrame()) {
     const glm::vec2 map = normalisingScaleBias(plan.valueRange);
     const OcclusionGrid& grid = occlusionGridFor(plan.table, map.x, map.y, request.settings.earlyTermination);
@@ -270,6 +273,21 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
                           request.settings);
       });
     if (occlusion) plan.occlusion = &*occlusion;
+  }
+  std::vector<RenderedBrick> rendered;
+  if (waves) {
+    // Nearest brick first; each dims the light the bricks behind it start from. One brick at a
+    // time, each on every worker thread (its tiles); the nodes then only composite.
+    FrontTransmittance front(plan.frame());
+    rendered.resize(std::size_t(options_.nodes));
+    arena_.execute([&] {
+      for (int rank : plan.order.frontToBack) {
+        RenderedBrick& r = rendered[std::size_t(rank)];
+        r = renderOwnBrick(nodes_[std::size_t(rank)], plan, &front);
+        front.addBehind(r.image);
+      }
+    });
+    plan.waves = &rendered;
   }
   BrickSchedule schedule;
   std::vector<std::set<int>> heldBefore;

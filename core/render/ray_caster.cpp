@@ -94,7 +94,8 @@ struct OwnedRun {
 }  // namespace
 
 RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
-                     const OcclusionMap* occlusion, std::shared_ptr<const EmptySpaceMap> emptySpace)
+                     const OcclusionMap* occlusion, std::shared_ptr<const EmptySpaceMap> emptySpace,
+                     const FrontTransmittance* front)
     : brick_(brick),
       table_(table),
       settings_(settings),
@@ -103,6 +104,7 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
       emptySpace_(emptySpace ? std::move(emptySpace)
                              : std::make_shared<const EmptySpaceMap>(brick, table, scale_, bias_, settings.skipEmptySpace)),
       occlusion_(occlusion),
+      front_(front),
       march_{ShadingParameters{}, VoxelAddressing(brick)},
       // The SIMD march indexes voxels with 32-bit offsets.
       marchFunction_(brick.stored().count() < (std::int64_t(1) << 31) ? selectedMarchFunction() : &marchScalar) {
@@ -268,6 +270,8 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
           };
           // segments[pending] now holds pixel (x, y)'s segment: queue it for the next batch.
           const auto queue = [&](int x, int y) {
+            // Waves: T_front * T_own <= stop  <=>  T_own <= stop / T_front (T_front > stop here).
+            if (front_) segments[pending].stopTransmittance = march_.stopTransmittance / front_->at(x, y);
             pixels[pending] = &image.at(x, y);
             if (++pending == kBatch) march();
           };
@@ -279,6 +283,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
               int live = 0;  // bit j: pixel x0 + j needs its ray set up
               for (int j = 0; j < n; ++j) {
                 occludedFrom[j] = occlusion_ ? occlusion_->occludedFrom(x0 + j, y) : OcclusionGrid::kNever;
+                if (front_ && front_->at(x0 + j, y) <= march_.stopTransmittance) occludedFrom[j] = 0;  // stopped in front
                 if (occludedFrom[j] <= firstPossible)  // ends before the brick: no ray to set up
                   ++local.rays, ++local.occluded;
                 else

@@ -12,6 +12,7 @@
 
 #include "core/camera/camera.h"
 #include "core/render/empty_space_map.h"
+#include "core/render/front_transmittance.h"
 #include "core/render/occlusion_map.h"
 #include "core/image/image.h"
 #include "core/render/render_settings.h"
@@ -35,9 +36,12 @@ class RayCaster {
   //! With `occlusion`, each ray stops at the lattice index from which the single-node ray's
   //! samples certainly no longer count (see occlusion_map.h). `emptySpace`, when given, is this
   //! brick's map under this table, mapping and settings (kept across frames by an EmptySpaceCache);
-  //! otherwise the caster builds its own.
+  //! otherwise the caster builds its own. With `front` (front-to-back waves), each ray stops where
+  //! the light left in front of the brick times its own transmittance reaches the termination
+  //! stop, and pixels already stopped in front take no ray.
   RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
-            const OcclusionMap* occlusion = nullptr, std::shared_ptr<const EmptySpaceMap> emptySpace = nullptr);
+            const OcclusionMap* occlusion = nullptr, std::shared_ptr<const EmptySpaceMap> emptySpace = nullptr,
+            const FrontTransmittance* front = nullptr);
 
   //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
   //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
@@ -80,6 +84,7 @@ class RayCaster {
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
   std::shared_ptr<const EmptySpaceMap> emptySpace_;  //!< invisible macro cells under this transfer function
   const OcclusionMap* occlusion_;
+  const FrontTransmittance* front_;
   std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
   MarchContext march_;           //!< the brick's constants for the sample loop
   MarchFunction marchFunction_;  //!< scalar or SIMD: equal results

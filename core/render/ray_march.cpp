@@ -10,6 +10,7 @@ namespace {
 template <bool compact>
 Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples) {
   FrontToBack result;
+  const float stop = s.stopFor(m);
   ShadedSample group[FrontToBack::kGroup];  // visible samples, composited eight at a time
   int waiting = 0, taken = 0;
   std::size_t lastJumpedCell = std::size_t(-1);
@@ -27,13 +28,13 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
     group[waiting++] = compact ? shadeCompactSample(m.shading, s.toLight, m.voxels, p, floor)
                                : shadeSample(m.shading, s.toLight, m.voxels, p, floor);
     if (waiting < FrontToBack::kGroup) continue;
-    const bool done = result.addEight(group, waiting, m.stopTransmittance, taken);
+    const bool done = result.addEight(group, waiting, stop, taken);
     samples += std::uint64_t(taken);
     waiting = 0;
     if (done) return result.rgba();
   }
   if (waiting > 0) {
-    result.addEight(group, waiting, m.stopTransmittance, taken);
+    result.addEight(group, waiting, stop, taken);
     samples += std::uint64_t(taken);
   }
   return result.rgba();

@@ -45,6 +45,11 @@ struct RaySegment {
   long first, last;
   glm::vec3 toLight;  //!< unit vector to the light (at the eye)
   float inverseStep;  //!< 1 / step
+  //! This ray's early termination, as MarchContext::stopTransmittance; negative: the context's.
+  //! Front-to-back waves give each ray its own: the brick stops once the light left in front of
+  //! it times its own transmittance reaches the single-node ray's stop.
+  float stopTransmittance = -1.0f;
+  float stopFor(const MarchContext& m) const { return stopTransmittance >= 0.0f ? stopTransmittance : m.stopTransmittance; }
 
   glm::vec3 point(long k) const { return origin + direction * ((float(k) + phase) * step); }
 

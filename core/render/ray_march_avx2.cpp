@@ -449,7 +449,7 @@ KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegmen
   cornersOf(data, offset, corner);
   Shaded8 shaded;
   shade8(m, sameDirection(s.toLight), x, y, z, corner, shaded);
-  return compositeEight(result, shaded, kLanes, m.stopTransmittance, samples);
+  return compositeEight(result, shaded, kLanes, s.stopFor(m), samples);
 }
 
 //! Where a ray's march stopped: done (early termination, or no samples left), or with its last
@@ -471,8 +471,9 @@ class TailPacker {
   KDSWAP_AVX2 explicit TailPacker(const MarchContext& m, Rgba* colours, std::uint64_t& samples)
       : m_(m), colours_(colours), samples_(samples) {}
 
-  //! Ray `ray`'s tail (size 1..7) with its light direction; its colour is written once shaded.
-  KDSWAP_AVX2 void add(std::size_t ray, const RayTail& tail, const glm::vec3& toLight) {
+  //! Ray `ray`'s tail (size 1..7) with its light direction and stop transmittance; its colour is
+  //! written once shaded.
+  KDSWAP_AVX2 void add(std::size_t ray, const RayTail& tail, const glm::vec3& toLight, float stop) {
     if (size_ + tail.size > kLanes) flush();
     // Lane j of the rotated tail is its sample j - size; the lanes it fills are [size, size + n).
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -487,7 +488,7 @@ class TailPacker {
     light_.x = _mm256_blendv_ps(light_.x, _mm256_set1_ps(toLight.x), mine);
     light_.y = _mm256_blendv_ps(light_.y, _mm256_set1_ps(toLight.y), mine);
     light_.z = _mm256_blendv_ps(light_.z, _mm256_set1_ps(toLight.z), mine);
-    entries_[count_++] = Entry{ray, tail.result, size_, tail.size};
+    entries_[count_++] = Entry{ray, tail.result, size_, tail.size, stop};
     size_ += tail.size;
   }
 
@@ -510,7 +511,7 @@ class TailPacker {
         _mm256_store_ps(own.g, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.g), from));
         _mm256_store_ps(own.b, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.b), from));
       }
-      compositeEight(entry.result, own, entry.n, m_.stopTransmittance, samples_);
+      compositeEight(entry.result, own, entry.n, entry.stop, samples_);
       colours_[entry.ray] = entry.result.rgba();
     }
     size_ = 0, count_ = 0;
@@ -521,6 +522,7 @@ class TailPacker {
     std::size_t ray;
     FrontToBack result;
     int start, n;
+    float stop;
   };
   const MarchContext& m_;
   Rgba* colours_;
@@ -605,7 +607,7 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
     if (tail.size == 0)
       colours[i] = tail.result.rgba();
     else
-      tails.add(i, tail, segments[i].toLight);
+      tails.add(i, tail, segments[i].toLight, segments[i].stopFor(m));
   }
   tails.flush();
   samples += taken;

@@ -16,6 +16,11 @@ struct RenderSettings {
   //! Skip rays that opaque matter in front of a node's brick ends (exact; see occlusion_grid.h).
   //! It needs every brick's cell summary: gathered in the virtual cluster, merged across MPI ranks.
   bool cullOccluded = true;
+  //! Front-to-back waves (beyond the paper; front_transmittance.h): nodes render one after
+  //! another, nearest first, each reading the light the nodes in front left at its pixels, so no
+  //! node samples behind where the single-node ray stops. Replaces the occlusion map; in-process
+  //! only (the virtual cluster with one brick per node), since it passes data while rendering.
+  bool frontToBackWaves = false;
   float ambient = 0.3f, diffuse = 0.7f, specular = 0.3f, shininess = 24.0f;
   std::optional<glm::vec2> valueRange;  //!< scalar range mapped to [0, 1]; the volume's if unset
 };

@@ -1,0 +1,40 @@
+// FrontTransmittance: front-to-back waves (beyond the paper). The paper's nodes render
+// independently, so a brick cannot know that matter in front of it already stops a ray; the
+// occlusion map (occlusion_map.h) proves it from a replicated summary where it can, which misses
+// thin or noisy matter. In waves the bricks render one after another, nearest first, and each
+// multiplies its partial image's transmittance into this frame-sized buffer: a brick then stops
+// each ray where the light left in front of it times its own transmittance reaches the single-node
+// ray's stop, and skips pixels already stopped. The brick behind thus takes the samples the
+// single-node ray takes (no more), at the price of passing this buffer between nodes while they
+// render: in one process a shared array read and written in visibility order.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/image/image.h"
+#include "core/image/rect.h"
+
+namespace kdswap {
+
+class FrontTransmittance {
+ public:
+  //! Every pixel of `frame` starts fully lit (transmittance 1).
+  explicit FrontTransmittance(const Rect& frame)
+      : frame_(frame), values_(std::size_t(frame.area()), 1.0f) {}
+
+  //! The light left in front at pixel (x, y) of the frame.
+  float at(int x, int y) const {
+    return values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+  }
+
+  //! Adds a brick rendered behind every brick added so far: its partial image's opacity
+  //! (premultiplied "over" image: alpha = 1 - its transmittance) dims the pixels it covers.
+  void addBehind(const Image& partial);
+
+ private:
+  Rect frame_;
+  std::vector<float> values_;
+};
+
+}  // namespace kdswap

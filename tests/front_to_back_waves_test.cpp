@@ -1,0 +1,126 @@
+// Front-to-back waves (RenderSettings::frontToBackWaves): nodes render nearest first and stop
+// their rays where the nodes in front already stopped the light. Checked against the single-node
+// image (exactly, 1e-5, with early termination off; and with it on, far inside the threshold's
+// bound the independent nodes need), against the single-node samples (never more), and against
+// the nodes rendering independently (the same image with termination off).
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "core/composite/registry.h"
+#include "test_support.h"
+
+using namespace kdswap;
+
+namespace {
+
+struct Fixture {
+  std::unique_ptr<MemoryVolume> volume = test::makeBlobs({33, 29, 31}, glm::vec3(1.0f, 1.2f, 0.8f));
+  Brick whole = wholeVolumeBrick(*volume);
+  TransferFunction tf = test::testTransfer();
+  glm::vec2 range() const { return glm::vec2(volume->info().minValue, volume->info().maxValue); }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+FrameRequest wavesRequest(const View& view, int w, int h, float ert) {
+  FrameRequest r;
+  r.view = view;
+  r.width = w;
+  r.height = h;
+  r.transfer = fixture().tf;
+  r.settings.earlyTermination = ert;
+  r.settings.frontToBackWaves = true;
+  return r;
+}
+
+std::vector<View> randomViews(std::mt19937& rng, int count) {
+  std::uniform_real_distribution<float> az(-180.0f, 180.0f), el(-80.0f, 80.0f), dist(1.8f, 4.0f);
+  std::vector<View> views;
+  for (int i = 0; i < count; ++i) {
+    View v;
+    v.azimuthDeg = az(rng), v.elevationDeg = el(rng), v.distance = dist(rng);
+    v.projection = i % 2 ? Projection::Orthographic : Projection::Perspective;
+    views.push_back(v);
+  }
+  return views;
+}
+
+std::string describe(int nodes, const std::string& strategy, const View& v, int w, int h) {
+  return strategy + " P=" + std::to_string(nodes) + " view " + std::to_string(v.azimuthDeg) + "," +
+         std::to_string(v.elevationDeg) + " " + std::to_string(w) + "x" + std::to_string(h);
+}
+
+}  // namespace
+
+TEST_CASE("front-to-back waves: with early termination off, the image equals the single-node image") {
+  std::mt19937 rng(61);
+  for (const std::string& strategy : {std::string("binary-swap"), std::string("direct-send")})
+    for (int nodes : {2, 3, 8, 13, 64}) {
+      ClusterOptions options;
+      options.checksums = true;
+      options.nodes = nodes;
+      options.strategy = strategy;
+      VirtualCluster cluster(*fixture().volume, options);
+      for (const View& view : randomViews(rng, 2))
+        for (auto [w, h] : std::vector<std::pair<int, int>>{{41, 37}, {64, 1}, {7, 9}}) {
+          const FrameRequest request = wavesRequest(view, w, h, 1.0f);
+          const FrameResult frame = cluster.renderFrame(request);
+          const ReferenceResult ref =
+              renderReference(fixture().whole, view, w, h, fixture().tf, request.settings, fixture().range());
+          CHECK_MESSAGE(maxAbsDifference(frame.image, ref.image, ref.image.rect()) <= 1e-5f,
+                        describe(nodes, strategy, view, w, h));
+        }
+    }
+}
+
+TEST_CASE("front-to-back waves: with early termination on, no more samples than one node and the same image") {
+  std::mt19937 rng(62);
+  for (float ert : {0.5f, 0.9f, 0.99f})
+    for (int nodes : {2, 8, 27, 64}) {
+      ClusterOptions options;
+      options.nodes = nodes;
+      VirtualCluster cluster(*fixture().volume, options);
+      ClusterOptions single;
+      single.nodes = 1;
+      VirtualCluster one(*fixture().volume, single);
+      for (const View& view : randomViews(rng, 2)) {
+        const FrameRequest request = wavesRequest(view, 48, 40, ert);
+        const FrameResult frame = cluster.renderFrame(request);
+        const FrameResult reference = one.renderFrame(request);  // P = 1: waves do not apply
+        const std::string what = describe(nodes, "binary-swap", view, 48, 40) + " ert " + std::to_string(ert);
+        // A brick stops where the light in front times its own reaches the stop: the single-node
+        // ray's samples, give or take the rounding of the product (a sample or so on a few rays).
+        CHECK_MESSAGE(frame.stats.samples() <= reference.stats.samples() + reference.stats.samples() / 200 + 8, what);
+        CHECK_MESSAGE(frame.stats.samples() + reference.stats.samples() / 50 >= reference.stats.samples(), what);
+        // Independent nodes may keep up to 1 - ert more light; waves stop where one node stops.
+        CHECK_MESSAGE(maxAbsDifference(frame.image, reference.image, reference.image.rect()) <= 1e-3f, what);
+      }
+    }
+}
+
+TEST_CASE("front-to-back waves: fewer samples than independent nodes where matter hides bricks") {
+  ClusterOptions options;
+  options.nodes = 16;
+  VirtualCluster cluster(*fixture().volume, options);
+  FrameRequest request = wavesRequest(View{}, 64, 64, 0.9f);
+  const FrameResult waves = cluster.renderFrame(request);
+  request.settings.frontToBackWaves = false;
+  const FrameResult independent = cluster.renderFrame(request);
+  CHECK(waves.stats.samples() < independent.stats.samples());
+  CHECK(maxAbsDifference(waves.image, independent.image, independent.image.rect()) <= 0.1f + 1e-5f);
+  // Every node still composites and records its partial image (the stages view, the timeline).
+  request.settings.frontToBackWaves = true;
+  request.recordPhases = true;
+  const FrameResult recorded = cluster.renderFrame(request);
+  REQUIRE(recorded.phases);
+  REQUIRE(recorded.phases->cells.size() == 16u);
+  for (const auto& row : recorded.phases->cells) {
+    REQUIRE_FALSE(row.empty());
+    CHECK(row.front().label == "render");
+  }
+  CHECK(maxAbsDifference(recorded.image, waves.image, waves.image.rect()) == 0.0f);
+}
