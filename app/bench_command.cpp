@@ -144,6 +144,8 @@ void runGrid(const BenchOptions& o) {
   g.cluster.voxels = parseVoxelChoice(o.voxels);
   g.balances = parseNames(o.balance, "--balance");
   g.bricksPerNode = parseList<int>(o.bricksPerNode, "--bricks-per-node", 1, 64);
+  if (o.waves && std::any_of(g.bricksPerNode.begin(), g.bricksPerNode.end(), [](int m) { return m > 1; }))
+    throw Error("--waves renders each node's one brick in visibility order: give --bricks-per-node 1");
   for (const std::string& b : g.balances)
     if (b != "space" && b != "cost") throw Error("--balance \"" + o.balance + "\": expected space, cost or space,cost");
   g.speedPattern = parseSpeeds(o.speeds);

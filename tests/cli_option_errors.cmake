@@ -130,3 +130,12 @@ if(TARGET kdswap-gui)
                   STDOUT "P, 1\\.\\.4096.*binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping.*move TARGET. glide DX DY FRAMES"
                   FORBID "input_script\\.h|binary-swap, \\.\\.\\." ARGS --help)
 endif()
+
+# Front-to-back waves render each node's one brick in visibility order: over-decomposition (bricks
+# handed out on demand) is refused with them rather than silently rendered without waves.
+kdswap_cli_case(RenderWavesWithOverDecompositionAreRefused
+                EXPECT "--waves renders each node.s one brick in visibility order: give --bricks-per-node 1"
+                ARGS render ${_tiny} --nodes 4 --waves --bricks-per-node 4)
+kdswap_cli_case(BenchWavesWithOverDecompositionAreRefused
+                EXPECT "--waves renders each node.s one brick in visibility order: give --bricks-per-node 1"
+                ARGS bench ${_benchTiny} --waves --bricks-per-node 1,4)
