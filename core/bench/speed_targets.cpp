@@ -31,7 +31,15 @@ struct CellSpec {
   //! The VTK comparison's transfer function (grey ramp, opacity 0 up to 10% rising to 0.8);
   //! empty: the data set's own preset (the default scene).
   std::string transfer = "grayscale";
+  bool waves = false;  //!< front-to-back waves (--waves) instead of independent nodes
 };
+
+//! `spec` with front-to-back waves, and the label its targets carry.
+CellSpec withWaves(CellSpec spec) {
+  spec.waves = true;
+  return spec;
+}
+constexpr const char* kWavesLabel = " with --waves (front-to-back waves, beyond the paper)";
 
 BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, const std::atomic<bool>* stop,
                   bool& interrupted) {
@@ -42,6 +50,7 @@ BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, 
   o.frames = frames;
   o.base.settings.stepVoxels = spec.step;
   o.base.settings.shading = true;
+  o.base.settings.frontToBackWaves = spec.waves;
   const VolumeInfo& info = source.info();
   o.base.transfer = loadTransferFunction(!spec.transfer.empty() ? spec.transfer
                                                                  : (info.preset.empty() ? "grayscale" : info.preset));
@@ -54,7 +63,7 @@ std::string gridCommand(const std::string& data, const CellSpec& s, int frames, 
   char buf[512];
   std::snprintf(buf, sizeof buf, "kdswap bench %s%s%s --sizes %d --nodes %d --step %g --shading on --frames %d%s",
                 data.c_str(), s.transfer.empty() ? "" : " --tf ", s.transfer.c_str(), s.size, s.nodes, double(s.step),
-                frames, extra);
+                frames, s.waves ? (std::string(" --waves") + extra).c_str() : extra);
   return buf;
 }
 
@@ -112,6 +121,21 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                  "P=1 wall " + ms(b.wallSeconds)});
   if (stopped()) return out;
 
+  say("phantom:256 uint8, P=64, front-to-back waves ...");
+  {
+    const CellSpec w64 = withWaves(p64);
+    const BenchCell w = measure(phantom, w64, o.frames, stop, interrupted);
+    out.push_back({std::string("phantom 256^3 uint8, 512x512, P=64, step 1, shading: wall per frame") + kWavesLabel,
+                   gridCommand(phantomData, w64, o.frames), w.wallSeconds * 1e3, 29.0, "ms", false, !interrupted, ""});
+    if (vtkHere) out.push_back(halfOfVtkHere(out.back(), "phantom 256^3 uint8, P=64, --waves", o.vtkMs[1]));
+    out.push_back({std::string("P=64 wall <= 1.15 x P=1 wall (phantom 256^3 uint8, 512x512, step 1)") + kWavesLabel,
+                   "kdswap bench " + phantomData + " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --waves --frames " +
+                       std::to_string(o.frames),
+                   b.wallSeconds > 0 ? w.wallSeconds / b.wallSeconds : 0.0, 1.15, "x", false, !interrupted,
+                   "P=1 wall " + ms(b.wallSeconds) + " (P=1 has no waves: one node)"});
+  }
+  if (stopped()) return out;
+
   say("turbulence:256, P=64 ...");
   {
     auto turbulence = openDataset("turbulence:256");
@@ -120,6 +144,14 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                    gridCommand("--dataset turbulence:256", p64, o.frames), c.wallSeconds * 1e3, 88.0, "ms", false,
                    !interrupted, ""});
     if (vtkHere) out.push_back(halfOfVtkHere(out.back(), "turbulence 256^3, P=64", o.vtkMs[0]));
+    if (stopped()) return out;
+    say("turbulence:256, P=64, front-to-back waves ...");
+    const CellSpec w64 = withWaves(p64);
+    const BenchCell w = measure(*turbulence, w64, o.frames, stop, interrupted);
+    out.push_back({std::string("turbulence 256^3, 512x512, P=64, step 1, shading: wall per frame") + kWavesLabel,
+                   gridCommand("--dataset turbulence:256", w64, o.frames), w.wallSeconds * 1e3, 88.0, "ms", false,
+                   !interrupted, ""});
+    if (vtkHere) out.push_back(halfOfVtkHere(out.back(), "turbulence 256^3, P=64, --waves", o.vtkMs[0]));
   }
   if (stopped()) return out;
 
@@ -128,19 +160,31 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   head.step = 0.5f;
   // Unit spacing, as the VTK figure (the file says 3.2 x 3.2 x 1.5, which at "0.5 voxel"
   // of the smallest spacing would take twice the samples along x and y).
+  const CellSpec headWaves = withWaves(head);
   SpeedTarget t3{"CT head (headsq, unit spacing), 512x512, P=64, step 0.5, shading: wall per frame",
                  gridCommand("--volume " + o.headPath + " --spacing 1,1,1", head, o.frames), 0, 42.0, "ms", false,
                  false, ""};
+  SpeedTarget t3w{std::string(t3.name) + kWavesLabel,
+                  gridCommand("--volume " + o.headPath + " --spacing 1,1,1", headWaves, o.frames), 0, 42.0, "ms",
+                  false, false, ""};
   if (std::filesystem::exists(o.headPath)) {
     const RespacedSource volume(openVolumeFile(o.headPath), glm::vec3(1.0f));
     const BenchCell c = measure(volume, head, o.frames, stop, interrupted);
     t3.measured = c.wallSeconds * 1e3;
     t3.ran = !interrupted;
+    if (!stopped()) {
+      say("CT head, P=64, front-to-back waves ...");
+      const BenchCell w = measure(volume, headWaves, o.frames, stop, interrupted);
+      t3w.measured = w.wallSeconds * 1e3;
+      t3w.ran = !interrupted;
+    }
   } else {
-    t3.note = o.headPath + " not found (pass --head FILE)";
+    t3.note = t3w.note = o.headPath + " not found (pass --head FILE)";
   }
   out.push_back(t3);
   if (vtkHere && t3.ran) out.push_back(halfOfVtkHere(t3, "CT head, P=64", o.vtkMs[2]));
+  out.push_back(t3w);
+  if (vtkHere && t3w.ran) out.push_back(halfOfVtkHere(t3w, "CT head, P=64, --waves", o.vtkMs[2]));
   if (stopped()) return out;
 
   say("binary-swap alone, 1024x1024, P=8 ...");
