@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
   app.add_option("--bricks-per-node", o.bricksPerNode,
                  "Over-decomposition: each node's brick cut into this many (1..64), handed out on demand")
       ->capture_default_str();
+  app.add_flag("--waves", o.waves,
+               "Front-to-back waves (beyond the paper): nodes render nearest first and stop where the light in front "
+               "is spent (one brick per node); also a checkbox under Rendering");
   app.add_option("--tf", o.tf, "Transfer-function preset or JSON file (default: the data set's preset)");
   app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels, 16..4096")->capture_default_str();
   app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();

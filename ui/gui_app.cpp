@@ -86,6 +86,9 @@ void initState(GuiState& state, const GuiOptions& o) {
   if (o.bricksPerNode < 1 || o.bricksPerNode > 64)
     throw Error("--bricks-per-node " + std::to_string(o.bricksPerNode) + ": expected 1..64");
   state.scene.cluster.bricksPerNode = o.bricksPerNode;
+  if (o.waves && o.bricksPerNode > 1)
+    throw Error("--waves renders each node's one brick in visibility order: give --bricks-per-node 1");
+  state.request.settings.frontToBackWaves = o.waves;
   // Leave a core for the UI thread (and Mesa's rasteriser) so the window stays responsive.
   state.scene.cluster.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
   if (o.nodes < 1 || o.nodes > kMaxNodes) throw Error("--nodes " + std::to_string(o.nodes) + ": expected 1.." + std::to_string(kMaxNodes));

@@ -260,6 +260,11 @@ void drawRenderSection(GuiState& state) {
   if (ImGui::Checkbox("shading", &s.shading)) state.requestFrame(false);
   ImGui::SameLine();
   if (ImGui::Checkbox("jitter", &s.jitter)) state.requestFrame(false);
+  ImGui::SameLine();
+  if (ImGui::Checkbox("waves", &s.frontToBackWaves)) state.requestFrame(false);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("front-to-back waves (beyond the paper): nodes render nearest first and stop where the light in "
+                      "front is spent, so none samples behind the single-node ray's end (one brick per node)");
   int projection = r.view.projection == Projection::Perspective ? 0 : 1;
   if (ImGui::Combo(field("projection").c_str(), &projection, "perspective\0orthographic\0")) {
     r.view.projection = projection == 0 ? Projection::Perspective : Projection::Orthographic;
