@@ -182,6 +182,10 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
 
 }  // namespace
 
+Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan) {
+  return RayCaster::screenRect(*emptySpaceFor(node.brickEmptySpace, node.brick, plan), node.brick.spacing(), plan.camera);
+}
+
 RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, const FrontTransmittance* front) {
   RenderedBrick out;
   out.start = nowSeconds();

@@ -57,6 +57,9 @@ struct RenderedBrick {
 //! node in visibility order before the nodes composite.
 RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, const FrontTransmittance* front = nullptr);
 
+//! The screen rectangle renderOwnBrick's image will cover (RayCaster::screenRect of the node's brick).
+Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan);
+
 //! Renders and composites one frame; sends the tile to the host. With `record` non-null, fills
 //! record->cells[rank] (this node's row only).
 NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& plan, PhaseRecord* record);

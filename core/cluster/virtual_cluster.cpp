@@ -12,6 +12,7 @@
 
 #include <oneapi/tbb/task_group.h>
 
+#include "core/cluster/front_to_back_waves.h"
 #include "core/cluster/host.h"
 #include "core/render/reference_render.h"
 #include "core/util/clock.h"
@@ -275,18 +276,8 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
     if (occlusion) plan.occlusion = &*occlusion;
   }
   std::vector<RenderedBrick> rendered;
-  if (waves) {
-    // Nearest brick first; each dims the light the bricks behind it start from. One brick at a
-    // time, each on every worker thread (its tiles); the nodes then only composite.
-    FrontTransmittance front(plan.frame());
-    rendered.resize(std::size_t(options_.nodes));
-    arena_.execute([&] {
-      for (int rank : plan.order.frontToBack) {
-        RenderedBrick& r = rendered[std::size_t(rank)];
-        r = renderOwnBrick(nodes_[std::size_t(rank)], plan, &front);
-        front.addBehind(r.image);
-      }
-    });
+  if (waves) {  // every brick rendered, nearest first where they overlap; the nodes then only composite
+    arena_.execute([&] { rendered = renderInWaves(nodes_, plan); });
     plan.waves = &rendered;
   }
   BrickSchedule schedule;

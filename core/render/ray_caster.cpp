@@ -236,10 +236,15 @@ long RayCaster::firstLatticeIndexBound(const Camera& camera, float step) const {
   return index >= double(std::numeric_limits<long>::max() / 2) ? 0 : std::max(0L, long(std::floor(index)) - 3);
 }
 
+Rect RayCaster::screenRect(const EmptySpaceMap& emptySpace, const glm::vec3& spacing, const Camera& camera) {
+  if (!emptySpace.anyVisible()) return Rect{};
+  return camera.projectBox(emptySpace.visibleLo() * spacing, emptySpace.visibleHi() * spacing);
+}
+
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   if (!emptySpace_->anyVisible()) return Image{};
   const glm::vec3 spacing = brick_.spacing();
-  const Rect rect = camera.projectBox(emptySpace_->visibleLo() * spacing, emptySpace_->visibleHi() * spacing);
+  const Rect rect = screenRect(*emptySpace_, spacing, camera);
   Image image(rect);
   if (rect.empty()) return image;
   const ClipBox clip = clipBox();

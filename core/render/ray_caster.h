@@ -43,6 +43,10 @@ class RayCaster {
             const OcclusionMap* occlusion = nullptr, std::shared_ptr<const EmptySpaceMap> emptySpace = nullptr,
             const FrontTransmittance* front = nullptr);
 
+  //! The screen rectangle a brick's partial image covers: its visible box (under `emptySpace`,
+  //! the brick's map) projected; empty when nothing in it is visible.
+  static Rect screenRect(const EmptySpaceMap& emptySpace, const glm::vec3& spacing, const Camera& camera);
+
   //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
   //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
   Image render(const Camera& camera, RenderCounters& counters) const;

@@ -1,0 +1,49 @@
+// Front-to-back waves: a dependency graph over the bricks (brick j waits for every brick nearer
+// the eye whose screen rectangle meets its own), run as tasks that release their dependents.
+#include "core/cluster/front_to_back_waves.h"
+
+#include <atomic>
+#include <memory>
+
+#include <oneapi/tbb/parallel_for_each.h>
+
+#include "core/render/front_transmittance.h"
+
+namespace kdswap {
+
+std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const FramePlan& plan) {
+  const std::vector<int>& order = plan.order.frontToBack;  // ranks, nearest brick first
+  const std::size_t n = order.size();
+  std::vector<RenderedBrick> rendered(nodes.size());
+  std::vector<Rect> rects(n);
+  for (std::size_t i = 0; i < n; ++i) rects[i] = ownBrickScreenRect(nodes[std::size_t(order[i])], plan);
+
+  // after[i]: the bricks (positions in `order`) that wait for brick i; waiting[j]: how many brick
+  // j still waits for. Pairs are compared once per frame: P^2 / 2 rectangle tests (~1 ms at 1024).
+  std::vector<std::vector<std::size_t>> after(n);
+  std::unique_ptr<std::atomic<int>[]> waiting(new std::atomic<int>[n]);
+  std::vector<std::size_t> ready;
+  for (std::size_t j = 0; j < n; ++j) {
+    int count = 0;
+    if (!rects[j].empty())
+      for (std::size_t i = 0; i < j; ++i)
+        if (!rects[i].intersect(rects[j]).empty()) after[i].push_back(j), ++count;
+    waiting[j].store(count, std::memory_order_relaxed);
+    if (count == 0) ready.push_back(j);
+  }
+
+  FrontTransmittance front(plan.frame());
+  tbb::parallel_for_each(ready.begin(), ready.end(), [&](std::size_t i, tbb::feeder<std::size_t>& feeder) {
+    const int rank = order[i];
+    RenderedBrick& r = rendered[std::size_t(rank)];
+    r = renderOwnBrick(nodes[std::size_t(rank)], plan, &front);
+    front.addBehind(r.image);  // only bricks waiting for this one read these pixels
+    // The last brick in front to finish releases the one behind; acq_rel orders every earlier
+    // brick's writes to `front` before its reads.
+    for (std::size_t j : after[i])
+      if (waiting[j].fetch_sub(1, std::memory_order_acq_rel) == 1) feeder.add(j);
+  });
+  return rendered;
+}
+
+}  // namespace kdswap

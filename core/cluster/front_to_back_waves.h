@@ -1,0 +1,19 @@
+// Front-to-back waves (RenderSettings::frontToBackWaves): every node's brick rendered before the
+// nodes composite, each brick after the bricks in front of it whose screen rectangles overlap its
+// own, so it reads, at each of its pixels, the light those bricks left (FrontTransmittance).
+// Bricks that share no pixel render at once; a pixel's bricks render one after another, nearest
+// first, so its transmittance is multiplied in the same order every frame (the same image bits).
+#pragma once
+
+#include <vector>
+
+#include "core/cluster/frame_request.h"
+#include "core/cluster/node_program.h"
+
+namespace kdswap {
+
+//! Renders nodes[rank]'s brick for every rank of plan.order, on the current arena's threads;
+//! result[rank] is its image and counters.
+std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const FramePlan& plan);
+
+}  // namespace kdswap
