@@ -72,20 +72,6 @@ float checkViews(VirtualCluster& cluster, const std::string& partition, const st
   return worst;
 }
 
-std::vector<View> randomViews(std::mt19937& rng, int count) {
-  std::uniform_real_distribution<float> az(-180.0f, 180.0f), el(-80.0f, 80.0f), dist(1.8f, 4.0f);
-  std::vector<View> views;
-  for (int i = 0; i < count; ++i) {
-    View v;
-    v.azimuthDeg = az(rng);
-    v.elevationDeg = el(rng);
-    v.distance = dist(rng);
-    v.projection = i % 2 ? Projection::Orthographic : Projection::Perspective;
-    views.push_back(v);
-  }
-  return views;
-}
-
 //! Views exactly along +-x, +-y, +-z: every ray is parallel to two of the three cut directions.
 std::vector<View> axisViews(Projection projection) {
   std::vector<View> views;
@@ -116,7 +102,7 @@ TEST_CASE("every strategy and partition matches the single-node image for P = 1 
         options.partition = partition;
         options.slabAxis = nodes % 3;
         VirtualCluster cluster(*fixture().volume, options);
-        checkViews(cluster, toString(partition), randomViews(rng, 2), {{41, 37}});
+        checkViews(cluster, toString(partition), test::randomViews(rng, 2), {{41, 37}});
       }
 }
 
@@ -132,13 +118,13 @@ TEST_CASE("nodes run as threads (the sanitizer builds' mode) give the same image
       VirtualCluster threaded(*fixture().volume, options);
       options.execution = NodeExecution::Tasks;
       VirtualCluster tasked(*fixture().volume, options);
-      for (const View& view : randomViews(rng, 2)) {
+      for (const View& view : test::randomViews(rng, 2)) {
         const FrameRequest request = requestFor(view, 37, 29);
         const Image a = threaded.renderFrame(request).image, b = tasked.renderFrame(request).image;
         // Same node program, same message order per pair: bit-identical, not just within 1e-5.
         CHECK_MESSAGE(maxAbsDifference(a, b, b.rect()) == 0.0f, strategy << " P=" << nodes);
       }
-      checkViews(threaded, "kd", randomViews(rng, 1), {{29, 31}});
+      checkViews(threaded, "kd", test::randomViews(rng, 1), {{29, 31}});
     }
 }
 
@@ -151,7 +137,7 @@ TEST_CASE("large node counts 128, 512 and 1024 match the single-node image, empt
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);
-      checkViews(cluster, "kd", randomViews(rng, 2), {{23, 19}});
+      checkViews(cluster, "kd", test::randomViews(rng, 2), {{23, 19}});
     }
 }
 
@@ -177,14 +163,14 @@ TEST_CASE("odd and degenerate image sizes 317x211, 1x1, 64x1 and 1x64 match the 
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);
-      checkViews(cluster, "kd", randomViews(rng, 1), {{1, 1}, {64, 1}, {1, 64}, {2, 3}});
+      checkViews(cluster, "kd", test::randomViews(rng, 1), {{1, 1}, {64, 1}, {1, 64}, {2, 3}});
     }
   for (int nodes : {8, 13}) {
     ClusterOptions options;
     options.checksums = true;  // every message verified on arrival
     options.nodes = nodes;
     VirtualCluster cluster(*fixture().volume, options);
-    checkViews(cluster, "kd", randomViews(rng, 2), {{317, 211}});
+    checkViews(cluster, "kd", test::randomViews(rng, 2), {{317, 211}});
   }
 }
 

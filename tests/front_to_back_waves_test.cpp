@@ -37,18 +37,6 @@ FrameRequest wavesRequest(const View& view, int w, int h, float ert) {
   return r;
 }
 
-std::vector<View> randomViews(std::mt19937& rng, int count) {
-  std::uniform_real_distribution<float> az(-180.0f, 180.0f), el(-80.0f, 80.0f), dist(1.8f, 4.0f);
-  std::vector<View> views;
-  for (int i = 0; i < count; ++i) {
-    View v;
-    v.azimuthDeg = az(rng), v.elevationDeg = el(rng), v.distance = dist(rng);
-    v.projection = i % 2 ? Projection::Orthographic : Projection::Perspective;
-    views.push_back(v);
-  }
-  return views;
-}
-
 std::string describe(int nodes, const std::string& strategy, const View& v, int w, int h) {
   return strategy + " P=" + std::to_string(nodes) + " view " + std::to_string(v.azimuthDeg) + "," +
          std::to_string(v.elevationDeg) + " " + std::to_string(w) + "x" + std::to_string(h);
@@ -65,7 +53,7 @@ TEST_CASE("front-to-back waves: with early termination off, the image equals the
       options.nodes = nodes;
       options.strategy = strategy;
       VirtualCluster cluster(*fixture().volume, options);
-      for (const View& view : randomViews(rng, 2))
+      for (const View& view : test::randomViews(rng, 2))
         for (auto [w, h] : std::vector<std::pair<int, int>>{{41, 37}, {64, 1}, {7, 9}}) {
           const FrameRequest request = wavesRequest(view, w, h, 1.0f);
           const FrameResult frame = cluster.renderFrame(request);
@@ -87,7 +75,7 @@ TEST_CASE("front-to-back waves: with early termination on, no more samples than 
       ClusterOptions single;
       single.nodes = 1;
       VirtualCluster one(*fixture().volume, single);
-      for (const View& view : randomViews(rng, 2)) {
+      for (const View& view : test::randomViews(rng, 2)) {
         const FrameRequest request = wavesRequest(view, 48, 40, ert);
         const FrameResult frame = cluster.renderFrame(request);
         const FrameResult reference = one.renderFrame(request);  // P = 1: waves do not apply

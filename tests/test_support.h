@@ -78,4 +78,20 @@ inline std::string reproduce(int nodes, const std::string& strategy, const std::
          toString(v.projection) + " --ert 1 --verify";
 }
 
+//! `count` orbit views at random azimuth, elevation (within 80 degrees of the horizon) and
+//! distance, alternately perspective and orthographic.
+inline std::vector<View> randomViews(std::mt19937& rng, int count) {
+  std::uniform_real_distribution<float> az(-180.0f, 180.0f), el(-80.0f, 80.0f), dist(1.8f, 4.0f);
+  std::vector<View> views;
+  for (int i = 0; i < count; ++i) {
+    View v;
+    v.azimuthDeg = az(rng);
+    v.elevationDeg = el(rng);
+    v.distance = dist(rng);
+    v.projection = i % 2 ? Projection::Orthographic : Projection::Perspective;
+    views.push_back(v);
+  }
+  return views;
+}
+
 }  // namespace kdswap::test
