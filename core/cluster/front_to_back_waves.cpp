@@ -38,6 +38,7 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
     RenderedBrick& r = rendered[std::size_t(rank)];
     r = renderOwnBrick(nodes[std::size_t(rank)], plan, &front);
     front.addBehind(r.image);  // only bricks waiting for this one read these pixels
+    if (plan.nodesRendered) plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // progress display
     // The last brick in front to finish releases the one behind; acq_rel orders every earlier
     // brick's writes to `front` before its reads.
     for (std::size_t j : after[i])

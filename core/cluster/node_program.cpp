@@ -225,7 +225,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     if (cells) cells->push_back(PhaseCell{"render", -1, partial.rect(), partial, 0});
   }
   observer.noteImage(partial);
-  if (plan.nodesRendered) plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);
+  if (plan.nodesRendered && !plan.waves) plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // waves count their own
 
   Tile tile = plan.strategy.compose(std::move(partial), plan.frame(), plan.order, comm, observer);
 
