@@ -23,6 +23,7 @@
 #include "core/volume/respaced_source.h"
 #include "core/bench/speed_targets.h"
 #include "core/bench/speedup_chart.h"
+#include "core/cluster/front_to_back_waves.h"
 #include "core/image/image_io.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
@@ -144,8 +145,7 @@ void runGrid(const BenchOptions& o) {
   g.cluster.voxels = parseVoxelChoice(o.voxels);
   g.balances = parseNames(o.balance, "--balance");
   g.bricksPerNode = parseList<int>(o.bricksPerNode, "--bricks-per-node", 1, 64);
-  if (o.waves && std::any_of(g.bricksPerNode.begin(), g.bricksPerNode.end(), [](int m) { return m > 1; }))
-    throw Error("--waves renders each node's one brick in visibility order: give --bricks-per-node 1");
+  for (int m : g.bricksPerNode) checkWavesWithBricksPerNode(o.waves, m);
   for (const std::string& b : g.balances)
     if (b != "space" && b != "cost") throw Error("--balance \"" + o.balance + "\": expected space, cost or space,cost");
   g.speedPattern = parseSpeeds(o.speeds);

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/cluster/front_to_back_waves.h"
 #include "core/composite/registry.h"
 #include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
@@ -330,9 +331,7 @@ Scene buildScene(const SceneOptions& o) {
   c.balance = o.balance;
   if (o.bricksPerNode < 1 || o.bricksPerNode > 64) throw Error("--bricks-per-node must be from 1 to 64");
   c.bricksPerNode = o.bricksPerNode;
-  if (o.waves && o.bricksPerNode > 1)
-    throw Error("--waves renders each node's one brick in visibility order: give --bricks-per-node 1 (over-decomposed "
-                "bricks are handed out on demand and keep the occlusion map)");
+  checkWavesWithBricksPerNode(o.waves, o.bricksPerNode);
   c.voxels = parseVoxelChoice(o.voxels);
   if (c.voxels == VoxelChoice::Float)  // opening the volume assumed the default storage
     checkBrickMemory(info, 16, "--voxels float: " + info.name, "--voxels compact takes half");

@@ -19,6 +19,7 @@
 #include <imgui_impl_opengl3.h>
 #include <nlohmann/json.hpp>
 
+#include "core/cluster/front_to_back_waves.h"
 #include "core/composite/registry.h"
 #include "core/image/image_io.h"
 #include "core/transfer/presets.h"
@@ -86,8 +87,7 @@ void initState(GuiState& state, const GuiOptions& o) {
   if (o.bricksPerNode < 1 || o.bricksPerNode > 64)
     throw Error("--bricks-per-node " + std::to_string(o.bricksPerNode) + ": expected 1..64");
   state.scene.cluster.bricksPerNode = o.bricksPerNode;
-  if (o.waves && o.bricksPerNode > 1)
-    throw Error("--waves renders each node's one brick in visibility order: give --bricks-per-node 1");
+  checkWavesWithBricksPerNode(o.waves, o.bricksPerNode);
   state.request.settings.frontToBackWaves = o.waves;
   // Leave a core for the UI thread (and Mesa's rasteriser) so the window stays responsive.
   state.scene.cluster.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);

@@ -26,9 +26,9 @@ struct FrameRequest {
   bool recordPhases = false;  //!< keep every node's image after each phase (Figure 6)
 };
 
-//! Immutable per-frame data every node computes identically from the request and the partition.
 struct RenderedBrick;  // node_program.h
 
+//! Immutable per-frame data every node computes identically from the request and the partition.
 struct FramePlan {
   FramePlan(const FrameRequest& request, const KdTree& tree, const glm::vec3& spacing, glm::vec2 valueRange,
             const Strategy& strategy);

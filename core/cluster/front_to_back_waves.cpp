@@ -8,6 +8,7 @@
 #include <oneapi/tbb/parallel_for_each.h>
 
 #include "core/render/front_transmittance.h"
+#include "core/util/error.h"
 
 namespace kdswap {
 
@@ -45,6 +46,12 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
       if (waiting[j].fetch_sub(1, std::memory_order_acq_rel) == 1) feeder.add(j);
   });
   return rendered;
+}
+
+void checkWavesWithBricksPerNode(bool waves, int bricksPerNode) {
+  if (waves && bricksPerNode > 1)
+    throw Error("--waves renders each node's one brick in visibility order: give --bricks-per-node 1 (over-decomposed "
+                "bricks are handed out on demand and keep the occlusion map)");
 }
 
 }  // namespace kdswap

@@ -16,4 +16,9 @@ namespace kdswap {
 //! result[rank] is its image and counters.
 std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const FramePlan& plan);
 
+//! Waves render each node's one brick: with over-decomposition (bricksPerNode > 1, bricks handed
+//! out on demand) the cluster keeps the occlusion map instead, so the command line and the GUI
+//! refuse the pair with this check's one-line error rather than ignore --waves.
+void checkWavesWithBricksPerNode(bool waves, int bricksPerNode);
+
 }  // namespace kdswap

@@ -11,7 +11,6 @@
 #include "core/comm/communicator.h"
 #include "core/metrics/node_report.h"
 #include "core/render/empty_space_cache.h"
-#include "core/render/front_transmittance.h"
 #include "core/render/ray_caster.h"
 #include "core/volume/brick.h"
 

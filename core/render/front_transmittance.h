@@ -1,8 +1,8 @@
 // FrontTransmittance: front-to-back waves (beyond the paper). The paper's nodes render
 // independently, so a brick cannot know that matter in front of it already stops a ray; the
 // occlusion map (occlusion_map.h) proves it from a replicated summary where it can, which misses
-// thin or noisy matter. In waves the bricks render one after another, nearest first, and each
-// multiplies its partial image's transmittance into this frame-sized buffer: a brick then stops
+// thin or noisy matter. In waves the bricks render nearest first (one after another where their
+// screen rectangles overlap), and each multiplies its partial image's transmittance into this frame-sized buffer: a brick then stops
 // each ray where the light left in front of it times its own transmittance reaches the single-node
 // ray's stop, and skips pixels already stopped. The brick behind thus takes the samples the
 // single-node ray takes (no more), at the price of passing this buffer between nodes while they
