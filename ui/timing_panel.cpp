@@ -108,7 +108,8 @@ void drawSpeedup(GuiState& state) {
   const std::vector<SweepPoint> points = sweep.points();
   const int frames = sweep.framesPerPoint();
   if (points.empty()) {
-    ImGui::TextDisabled("Modelled parallel time = max render + per phase max composite, one processor per node; "
+    ImGui::TextDisabled("Modelled parallel time = max render (with waves: the longest chain of renders that waited for "
+                        "each other) + per phase max composite, one processor per node; "
                         "per node count one warm-up frame, then the median of %d frames.", frames);
     ImGui::PopTextWrapPos();
     return;

@@ -95,8 +95,9 @@ std::string formatCellDetails(const std::vector<BenchCell>& cells) {
   const Axes a = axesOf(cells);
   std::string out;
   for (const std::string& s : a.strategies) {
-    out += header(a, "Per cell, " + s + " (wall = whole frame on this machine; modelled = max render + "
-                     "per-phase max composite, as if each node had its own processor):");
+    out += header(a, "Per cell, " + s + " (wall = whole frame on this machine; modelled = max render (with "
+                     "--waves: the longest chain of renders that waited for each other) + per-phase max composite, "
+                     "as if each node had its own processor):");
     for (int size : a.sizes) {
       out += row(cells, a, s, size, "wall ms", "%10.2f", [](const BenchCell& c) { return c.wallSeconds * 1e3; });
       out += row(cells, a, s, size, "Msamples/s", "%10.1f", [](const BenchCell& c) { return c.samplesPerSecond * 1e-6; });

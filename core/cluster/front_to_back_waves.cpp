@@ -20,17 +20,18 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
   for (std::size_t i = 0; i < n; ++i) rects[i] = ownBrickScreenRect(nodes[std::size_t(order[i])], plan);
 
   // after[i]: the bricks (positions in `order`) that wait for brick i; waiting[j]: how many brick
-  // j still waits for. Pairs are compared once per frame: P^2 / 2 rectangle tests (~1 ms at 1024).
+  // j still waits for; waitsFor[j]: their ranks, for the modelled time (FrameStats::renderSpan).
+  // Pairs are compared once per frame: P^2 / 2 rectangle tests (~1 ms at 1024).
   std::vector<std::vector<std::size_t>> after(n);
+  std::vector<std::vector<int>> waitsFor(n);
   std::unique_ptr<std::atomic<int>[]> waiting(new std::atomic<int>[n]);
   std::vector<std::size_t> ready;
   for (std::size_t j = 0; j < n; ++j) {
-    int count = 0;
     if (!rects[j].empty())
       for (std::size_t i = 0; i < j; ++i)
-        if (!rects[i].intersect(rects[j]).empty()) after[i].push_back(j), ++count;
-    waiting[j].store(count, std::memory_order_relaxed);
-    if (count == 0) ready.push_back(j);
+        if (!rects[i].intersect(rects[j]).empty()) after[i].push_back(j), waitsFor[j].push_back(order[i]);
+    waiting[j].store(int(waitsFor[j].size()), std::memory_order_relaxed);
+    if (waitsFor[j].empty()) ready.push_back(j);
   }
 
   FrontTransmittance front(plan.frame());
@@ -45,6 +46,7 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
     for (std::size_t j : after[i])
       if (waiting[j].fetch_sub(1, std::memory_order_acq_rel) == 1) feeder.add(j);
   });
+  for (std::size_t j = 0; j < n; ++j) rendered[std::size_t(order[j])].renderedAfter = std::move(waitsFor[j]);
   return rendered;
 }
 

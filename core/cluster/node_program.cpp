@@ -222,6 +222,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     report.rays = rendered.counters.rays;
     report.samples = rendered.counters.samples;
     report.occluded = rendered.counters.occluded;
+    report.renderedAfter = std::move(rendered.renderedAfter);
     if (cells) cells->push_back(PhaseCell{"render", -1, partial.rect(), partial, 0});
   }
   observer.noteImage(partial);

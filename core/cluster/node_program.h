@@ -49,6 +49,7 @@ struct RenderedBrick {
   Image image;
   RenderCounters counters;
   double start = 0.0, end = 0.0;
+  std::vector<int> renderedAfter;  //!< waves: the ranks this brick waited for (NodeReport::renderedAfter)
 };
 
 //! Renders the node's own brick for `plan` (with its occlusion map, if any, and `front` in

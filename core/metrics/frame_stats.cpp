@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
@@ -47,8 +48,54 @@ double FrameStats::modelledCommSeconds() const {
   return t;
 }
 
+double FrameStats::renderSpan() const {
+  std::unordered_map<int, std::size_t> byRank;
+  bool waited = false;
+  for (std::size_t i = 0; i < perNode.size(); ++i) {
+    byRank[perNode[i].rank] = i;
+    waited = waited || !perNode[i].renderedAfter.empty();
+  }
+  if (!waited) return renderMax();
+  // finish(n) = max over the nodes n waited for of finish + n's own render, by depth-first
+  // search with an explicit stack (P may be thousands deep); a rank that is not reported, or a
+  // wait that would close a cycle, adds nothing.
+  enum : std::uint8_t { kNew, kOpen, kDone };
+  std::vector<std::uint8_t> state(perNode.size(), kNew);
+  std::vector<double> finish(perNode.size(), 0.0);
+  double span = 0;
+  for (std::size_t root = 0; root < perNode.size(); ++root) {
+    std::vector<std::size_t> stack{root};
+    while (!stack.empty()) {
+      const std::size_t n = stack.back();
+      if (state[n] == kDone) {
+        stack.pop_back();
+        continue;
+      }
+      bool ready = true;
+      if (state[n] == kNew) {
+        state[n] = kOpen;
+        for (int rank : perNode[n].renderedAfter)
+          if (auto it = byRank.find(rank); it != byRank.end() && state[it->second] == kNew) {
+            stack.push_back(it->second);
+            ready = false;
+          }
+      }
+      if (!ready) continue;
+      double start = 0;
+      for (int rank : perNode[n].renderedAfter)
+        if (auto it = byRank.find(rank); it != byRank.end() && state[it->second] == kDone)
+          start = std::max(start, finish[it->second]);
+      finish[n] = start + perNode[n].modelledRenderSeconds();
+      span = std::max(span, finish[n]);
+      state[n] = kDone;
+      stack.pop_back();
+    }
+  }
+  return span;
+}
+
 double FrameStats::modelledParallelSeconds() const {
-  double t = renderMax() + modelledCommSeconds();
+  double t = renderSpan() + modelledCommSeconds();
   for (int p = 0; p < phaseCount(); ++p) t += phaseComputeMax(p);
   return t;
 }
@@ -84,6 +131,7 @@ nlohmann::json FrameStats::toJson() const {
   j["modelled_comm_s"] = modelledCommSeconds();
   j["network"] = network.name;
   j["render_s_mean"] = renderMean();
+  j["render_span_s"] = renderSpan();
   j["distribute_s"] = distributeSeconds;
   j["gather_s"] = gatherSeconds;
   j["samples"] = samples();
@@ -103,6 +151,7 @@ nlohmann::json FrameStats::toJson() const {
     nj["samples"] = n.samples;
     nj["bytes_sent"] = n.bytesSent();
     nj["private_bytes"] = n.privateBytes;
+    if (!n.renderedAfter.empty()) nj["rendered_after"] = n.renderedAfter;
     // The timeline keys only where the report carries times: absent, not 0, where it does not.
     if (n.timed) {
       nj["render_start_s"] = n.renderStart;
@@ -143,17 +192,22 @@ nlohmann::json FrameStats::toJson() const {
 
 std::string formatFrameTable(const FrameStats& s) {
   std::uint64_t privateMax = 0;
-  for (const NodeReport& n : s.perNode) privateMax = std::max(privateMax, n.privateBytes);
+  bool waited = false;  // front-to-back waves: the render span is a chain, not the max
+  for (const NodeReport& n : s.perNode) {
+    privateMax = std::max(privateMax, n.privateBytes);
+    waited = waited || !n.renderedAfter.empty();
+  }
   char text[1536];
   int n = std::snprintf(text, sizeof text,
                 "%d node%s, %dx%d, %s compositing, %s partition\n"
                 "  render     (max over nodes) %9.2f ms\n"
                 "  composite  (max over nodes) %9.2f ms   over %d phase(s)\n"
-                "  modelled parallel time      %9.2f ms   (max render + per-phase max composite)\n"
+                "  modelled parallel time      %9.2f ms   (%s + per-phase max composite)\n"
                 "  wall time, this machine     %9.2f ms   (distribute %.2f ms once, gather %.2f ms)\n"
                 "  samples %llu, rays %llu, bytes sent %s, node memory max %s, peak RSS %s\n",
                 s.nodes, s.nodes == 1 ? "" : "s", s.width, s.height, s.strategy.c_str(), s.partition.c_str(),
                 s.renderMax() * 1e3, s.compositeMax() * 1e3, s.phaseCount(), s.modelledParallelSeconds() * 1e3,
+                waited ? "render chain of the waves" : "max render",
                 s.wallSeconds * 1e3, s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
                 (unsigned long long)s.rays(), formatBytes(s.bytesSent()).c_str(), formatBytes(privateMax).c_str(),
                 formatBytes(s.peakRssBytes).c_str());

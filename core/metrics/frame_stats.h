@@ -1,7 +1,9 @@
 // FrameStats: one frame's figures, aggregated the way the paper reports them (maximum over
-// nodes), plus the modelled parallel time: max render + sum over phases of the max composite
+// nodes), plus the modelled parallel time: the render span + sum over phases of the max composite
 // time, as if every virtual node had its own processor (behind the paper's Figures 7 and 8), of
 // its modelled speed, with each phase's messages costed by the network model (zero when ideal).
+// The render span is the max render for independent nodes; in front-to-back waves a node starts
+// only when the nodes it waited for have finished, so the span is the longest such chain.
 #pragma once
 
 #include <string>
@@ -30,6 +32,9 @@ struct FrameStats {
   double renderMax() const;      //!< max over nodes of render work / node speed
   double compositeMax() const;   //!< max over nodes of compositing work / node speed
   double renderMean() const;     //!< mean over nodes of render work / node speed
+  //! Modelled time until the last node's render ends: renderMax() for independent nodes; with
+  //! waves (NodeReport::renderedAfter) the longest chain of renders that waited for each other.
+  double renderSpan() const;
   double modelledCommSeconds() const;  //!< sum over phases of the network model's phase time
   double modelledParallelSeconds() const;
   std::uint64_t samples() const;
