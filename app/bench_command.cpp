@@ -43,7 +43,7 @@ struct BenchOptions {
   int repeat = 1;
   std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1", voxels = "auto";
   int frames = 5, quantise = 0, threads = 0;
-  float step = 0.5f, degrees = 1.0f, ert = 0.99f;
+  float step = 0.5f, degrees = 1.0f, ert = 0.99f, distance = kBenchViewDistance;
   bool sparse = false, waves = false, micro = false, paper = false, targets = false;
   bool headGiven = false;  //!< --head on the command line: then it must exist (the default may be absent)
   std::string gridOption;  //!< the first grid-only option given (--dataset, --sizes, ...), or ""
@@ -106,9 +106,9 @@ std::string commandLine(const BenchOptions& o) {
   if (!o.spacing.empty()) c += " --spacing " + o.spacing;
   if (o.quantise) c += " --quantise " + std::to_string(o.quantise);
   char buf[512];
-  std::snprintf(buf, sizeof buf, " --sizes %s --nodes %s --composite %s --frames %d --degrees %g --step %g --shading %s --ert %g --view %s --partition %s%s --threads %d",
+  std::snprintf(buf, sizeof buf, " --sizes %s --nodes %s --composite %s --frames %d --degrees %g --step %g --shading %s --ert %g --view %s --distance %g --partition %s%s --threads %d",
                 o.sizes.c_str(), o.nodes.c_str(), o.composite.c_str(), o.frames, double(o.degrees), double(o.step),
-                o.shading.c_str(), double(o.ert), o.view.c_str(), o.partition.c_str(), o.sparse ? " --sparse" : "",
+                o.shading.c_str(), double(o.ert), o.view.c_str(), double(o.distance), o.partition.c_str(), o.sparse ? " --sparse" : "",
                 o.threads);
   if (o.waves) c += " --waves";
   return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --balance " + o.balance +
@@ -131,6 +131,8 @@ void runGrid(const BenchOptions& o) {
   g.degreesPerFrame = o.degrees;
   const glm::vec2 view = parseViewAngles(o.view, "--view");
   g.base.view.azimuthDeg = view.x, g.base.view.elevationDeg = view.y;
+  checkDistance(o.distance);
+  g.base.view.distance = o.distance;
   checkStep(o.step);
   checkErt(o.ert);
   g.base.settings.stepVoxels = o.step;
@@ -172,10 +174,11 @@ void runGrid(const BenchOptions& o) {
   const VoxelStorage storage = VoxelStorage::forVolume(info, g.cluster.voxels);
   BenchContext ctx{commandLine(o), o.volume.empty() ? dataset : o.volume,
                    info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees,
-                   storage.compactFormat() ? "compact" : "float"};
-  std::printf("%s (%dx%dx%d %s, %s voxels), step %g, shading %s, median of %d frames turning %g deg/frame\n\n",
+                   storage.compactFormat() ? "compact" : "float", o.distance};
+  std::printf("%s (%dx%dx%d %s, %s voxels), step %g, shading %s, eye at %g radii, median of %d frames turning %g "
+              "deg/frame\n\n",
               ctx.dataset.c_str(), info.dims.x, info.dims.y, info.dims.z, info.type.c_str(), ctx.voxels.c_str(),
-              double(o.step), o.shading.c_str(), o.frames, double(o.degrees));
+              double(o.step), o.shading.c_str(), double(o.distance), o.frames, double(o.degrees));
   std::printf("%s%s", formatPaperLayout(result.cells).c_str(), formatCellDetails(result.cells).c_str());
   const std::filesystem::path dir(o.outDir);
   writeFileAtomically((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
@@ -315,6 +318,11 @@ void addBenchCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION in degrees (elevation in (-90, 90))")
       ->capture_default_str();
+  cmd->add_option("--distance", o->distance,
+                  "Eye distance in bounding-sphere radii, in (0, 1000); closer than render's default 3.4, so the "
+                  "volume fills more of the frame, as in the README's figures")
+      ->check(number())
+      ->capture_default_str();
   cmd->add_option("--step", o->step, "Sample spacing in voxels, 0.01..16")->check(number())->capture_default_str();
   cmd->add_option("--shading", o->shading, "on or off")->capture_default_str();
   cmd->add_option("--ert", o->ert, "Early ray termination threshold, in (0, 1] (1 disables)")
@@ -364,7 +372,7 @@ void addBenchCommand(CLI::App& app) {
   const std::vector<CLI::Option*> gridOnly = [cmd] {
     std::vector<CLI::Option*> options;
     for (const char* name : {"--dataset", "--volume", "--spacing", "--quantise", "--sizes", "--nodes", "--composite",
-                             "--degrees", "--view", "--step", "--shading", "--ert", "--tf", "--partition", "--sparse",
+                             "--degrees", "--view", "--distance", "--step", "--shading", "--ert", "--tf", "--partition", "--sparse",
                              "--waves", "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
                              "--out-dir"})
       options.push_back(cmd->get_option(name));

@@ -118,6 +118,10 @@ void checkStep(float step, const std::string& option) {
   if (!(step >= 0.01f && step <= 16.0f)) throw Error(option + " must be between 0.01 and 16 voxels");
 }
 
+void checkDistance(float radii, const std::string& option) {
+  if (!(radii > 0.0f && radii < 1000.0f)) throw Error(option + " must be between 0 and 1000 radii");
+}
+
 void checkErt(float ert, const std::string& option) {
   if (!(ert > 0.0f && ert <= 1.0f)) throw Error(option + " must be in (0, 1]");
 }
@@ -289,7 +293,7 @@ Scene buildScene(const SceneOptions& o) {
   const glm::vec2 angles = parseViewAngles(o.view, "--view");
   r.view.azimuthDeg = angles.x;
   r.view.elevationDeg = angles.y;
-  if (!(o.distance > 0.0f && o.distance < 1000.0f)) throw Error("--distance must be between 0 and 1000 radii");
+  checkDistance(o.distance);
   r.view.distance = o.distance;
   if (!(o.fov >= 1.0f && o.fov <= 170.0f)) throw Error("--fov must be between 1 and 170 degrees");
   r.view.fovDeg = o.fov;

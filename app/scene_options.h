@@ -94,6 +94,7 @@ glm::vec2 parseValueRange(const std::string& text, const std::string& option);
 bool parseOnOff(const std::string& text, const std::string& option);
 void checkStep(float step, const std::string& option = "--step");        //!< 0.01..16 voxels
 void checkErt(float ert, const std::string& option = "--ert");           //!< (0, 1]
+void checkDistance(float radii, const std::string& option = "--distance");  //!< (0, 1000) bounding-sphere radii
 void checkThreads(int threads, const std::string& option = "--threads");  //!< 0..1024
 //! "1,0.5,..." each from 0.01 to 100; "" -> {}.
 std::vector<double> parseSpeeds(const std::string& text, const std::string& option = "--speeds");

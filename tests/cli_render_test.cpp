@@ -134,3 +134,28 @@ TEST_CASE("kdswap export writes a data set that kdswap and other tools read back
   CHECK(bad.code == 2);
   CHECK(lineCount(bad.err) == 1);
 }
+
+TEST_CASE("kdswap bench --distance frames the scene as render does: the same view takes the same samples") {
+  const fs::path dir = workDir() / "bench-distance";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = " --dataset phantom:32 --tf grayscale --step 1 --view 40,20";
+  const Run render = runKdswap("render" + scene + " --size 64x64 --nodes 1 -q --out " + (dir / "r.png").string() +
+                               " --stats " + (dir / "r.json").string());
+  REQUIRE(render.code == 0);
+  const std::uint64_t renderSamples = nlohmann::json::parse(test::readFile((dir / "r.json").string()))["samples"];
+  REQUIRE(renderSamples > 0);
+  auto benchSamples = [&](const std::string& distance) {
+    const fs::path out = dir / ("bench" + distance);
+    const Run bench = runKdswap("bench" + scene + " --sizes 64 --nodes 1 --frames 1 --degrees 0 --out-dir " +
+                                out.string() + (distance.empty() ? "" : " --distance " + distance));
+    CAPTURE(bench.err);
+    REQUIRE(bench.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(test::readFile((out / "bench.json").string()));
+    CHECK(j["settings"]["view_distance"].get<double>() == doctest::Approx(distance.empty() ? 2.5 : std::stod(distance)));
+    CHECK(j["command"].get<std::string>().find(" --distance ") != std::string::npos);
+    return j["cells"][0]["samples"].get<double>();
+  };
+  CHECK(benchSamples("3.4") == double(renderSamples));  // render's default distance
+  CHECK(benchSamples("") > double(renderSamples));      // the bench's closer default: more of the frame
+}

@@ -78,7 +78,7 @@ TEST_CASE("render --range refuses MIN,MAX that are not finite floats or equal at
   CHECK(run(kRender + "--out " + dir.file("ok.png") + " --range 0,1e-3").code == 0);
 }
 
-TEST_CASE("bench validates the view, turn and threads like render, before any cell runs") {
+TEST_CASE("bench validates the view, distance, turn and threads like render, before any cell runs") {
   const TempDir dir;
   const std::string out = " --out-dir " + dir.file("bench");
   expectRefused(kBench + "--view nan,nan" + out, {"--view", "nan"});
@@ -88,6 +88,8 @@ TEST_CASE("bench validates the view, turn and threads like render, before any ce
   expectRefused(kBench + "--degrees 1000" + out, {"--degrees", "-360 to 360"});
   expectRefused(kBench + "--threads -3" + out, {"--threads", "0 to 1024"});
   expectRefused(kBench + "--step nan" + out, {"--step"});
+  expectRefused(kBench + "--distance 0" + out, {"--distance", "between 0 and 1000"});
+  expectRefused(kBench + "--distance nan" + out, {"--distance"});
   CHECK_FALSE(fs::exists(dir.file("bench")));  // nothing measured, nothing written
 }
 

@@ -141,7 +141,8 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
   j["settings"] = {{"step_voxels", ctx.stepVoxels},
                    {"shading", ctx.shading},
                    {"frames", ctx.frames},
-                   {"degrees_per_frame", ctx.degreesPerFrame}};
+                   {"degrees_per_frame", ctx.degreesPerFrame},
+                   {"view_distance", ctx.viewDistance}};
   j["statistic"] = "median over frames (warm-up frame excluded); render and composite are maxima over nodes";
   j["interrupted"] = result.interrupted;
   nlohmann::json cells = nlohmann::json::array();

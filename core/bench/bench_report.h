@@ -22,6 +22,7 @@ struct BenchContext {
   int frames = 0;
   float degreesPerFrame = 0;
   std::string voxels = "float";  //!< the bricks' storage: "float" or "compact"
+  float viewDistance = 0;        //!< eye distance, bounding-sphere radii
 };
 
 //! Paper layout, one table per strategy: times in ms, maximum over nodes.
