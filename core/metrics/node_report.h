@@ -53,7 +53,7 @@ struct NodeReport {
     double start = 0, end = 0;  //!< wall interval of this brick's ray casting (same clock)
   };
   std::vector<BrickRender> bricks;
-  //! Front-to-back waves: the ranks whose renders this node's waited for (the bricks nearer the
+  //! Front-to-back waves: the ranks whose renders this node's render waited for (the bricks nearer the
   //! eye whose screen rectangles meet its own). Empty for the paper's independent nodes.
   std::vector<int> renderedAfter;
 
