@@ -331,7 +331,8 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--tf", o->tf, "Transfer function preset or file (default: the data set's)")->check(nonEmpty());
   cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
-  cmd->add_flag("--waves", o->waves, "Front-to-back waves: nodes render nearest first, stopping where those in front stopped the light (see kdswap render --help)");
+  cmd->add_flag("--waves", o->waves, "Front-to-back waves: nodes render nearest first, stopping where those in front stopped the light (see kdswap "
+                "render --help); cells read STRATEGY+waves");
   cmd->add_option("--balance", o->balance,
                   "Plane placements to compare: space, cost or space,cost (cost cells read STRATEGY+cost)")
       ->capture_default_str();

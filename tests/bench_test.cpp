@@ -240,3 +240,27 @@ TEST_CASE("a target not run says why, in one run or several, and shows no measur
   CHECK(text.find("measured 0.00") == std::string::npos);
   CHECK(text.find("0 of 1 targets met (0 run)") != std::string::npos);
 }
+
+TEST_CASE("a grid with front-to-back waves labels its cells STRATEGY+waves, and its modelled time follows the waits") {
+  auto volume = test::makeBlobs(glm::ivec3(16, 14, 12));
+  BenchGridOptions o;
+  o.sizes = {24};
+  o.nodes = {1, 8};
+  o.frames = 1;
+  o.base.transfer = loadTransferFunction("grayscale");
+  o.base.settings.frontToBackWaves = true;
+  const BenchResult r = runBenchGrid(*volume, o, {}, nullptr);
+  REQUIRE(r.cells.size() == 2);
+  for (const BenchCell& c : r.cells) {
+    CHECK(c.strategy == "binary-swap+waves");
+    // The render span is at least the max render, so the modelled time is never below it.
+    CHECK(c.modelledSeconds >= c.renderSeconds);
+  }
+  BenchContext ctx;
+  ctx.dataset = "blobs";
+  CHECK(benchJson(ctx, r)["cells"][1]["strategy"] == "binary-swap+waves");
+  CHECK(benchCsv(ctx, r.cells).find(",binary-swap+waves,8,") != std::string::npos);
+
+  o.base.settings.frontToBackWaves = false;
+  CHECK(runBenchGrid(*volume, o, {}, nullptr).cells.front().strategy == "binary-swap");
+}

@@ -61,7 +61,8 @@ BenchResult runBenchGrid(const VolumeSource& source, const BenchGridOptions& o,
   for (const std::string& balance : o.balances)
   for (int bricks : o.bricksPerNode) {
     const std::string strategy = base + (balance == "space" ? "" : "+" + balance) +
-                                 (bricks > 1 ? "+bricks" + std::to_string(bricks) : "");
+                                 (bricks > 1 ? "+bricks" + std::to_string(bricks) : "") +
+                                 (o.base.settings.frontToBackWaves ? "+waves" : "");
     for (int nodes : o.nodes) {
       ClusterOptions co = o.cluster;
       co.nodes = nodes;

@@ -44,7 +44,7 @@ struct BenchGridOptions {
 
 //! One cell: medians over the measured frames (maximum over nodes, as the paper reports).
 struct BenchCell {
-  std::string strategy;           //!< with "+cost" appended for cost-balanced planes
+  std::string strategy;           //!< with "+cost", "+bricksM", "+waves" appended where they apply
   int nodes = 0, width = 0, height = 0;
   int frames = 0;                 //!< frames measured (fewer than asked if interrupted)
   double renderSeconds = 0;       //!< FrameStats::renderMax
