@@ -44,7 +44,7 @@ struct BenchOptions {
   std::string balance = "space", speeds, network = "ideal", bricksPerNode = "1", voxels = "auto";
   int frames = 5, quantise = 0, threads = 0;
   float step = 0.5f, degrees = 1.0f, ert = 0.99f, distance = kBenchViewDistance;
-  bool sparse = false, waves = false, micro = false, paper = false, targets = false;
+  bool sparse = false, waves = false, interleave = false, micro = false, paper = false, targets = false;
   bool headGiven = false;  //!< --head on the command line: then it must exist (the default may be absent)
   std::string gridOption;  //!< the first grid-only option given (--dataset, --sizes, ...), or ""
   bool framesGiven = false;
@@ -88,14 +88,18 @@ bool stderrIsTerminal() {
 }
 
 // A terminal shows one line rewritten after every frame; a log (a file, CI) gets a line when a
-// cell starts and when it ends, not one per frame.
+// cell starts and when it ends, not one per frame. Interleaved runs change cell every frame: there
+// a log gets a line when cells end and otherwise at most one every 5 s.
 void progressLine(const BenchProgress& p) {
   const bool tty = stderrIsTerminal();
   static int lastDone = -1;
   static std::string lastCurrent;
-  if (!tty && p.cellsDone == lastDone && p.current == lastCurrent) return;
+  static double lastLine = -1e9;
+  const bool sameCell = p.current == lastCurrent || (p.interleaved && p.elapsedSeconds - lastLine < 5.0);
+  if (!tty && p.cellsDone == lastDone && sameCell) return;
   lastDone = p.cellsDone;
   lastCurrent = p.current;
+  lastLine = p.elapsedSeconds;
   std::fprintf(stderr, "%s[%d/%d cells] %-32s %5.0f s elapsed, about %.0f s left%s", tty ? "\r" : "", p.cellsDone,
                p.cellsTotal, p.current.c_str(), p.elapsedSeconds, p.remainingSeconds, tty ? "   " : "\n");
 }
@@ -111,6 +115,7 @@ std::string commandLine(const BenchOptions& o) {
                 o.shading.c_str(), double(o.ert), o.view.c_str(), double(o.distance), o.partition.c_str(), o.sparse ? " --sparse" : "",
                 o.threads);
   if (o.waves) c += " --waves";
+  if (o.interleave) c += " --interleave";
   return c + buf + (o.tf.empty() ? "" : " --tf " + o.tf) + " --balance " + o.balance +
          (o.speeds.empty() ? "" : " --speeds " + o.speeds) + " --bricks-per-node " + o.bricksPerNode +
          " --network " + o.network + " --voxels " + o.voxels + " --out-dir " + o.outDir;
@@ -139,6 +144,7 @@ void runGrid(const BenchOptions& o) {
   g.base.settings.shading = parseOnOff(o.shading, "--shading");
   g.base.settings.earlyTermination = o.ert;
   g.base.settings.frontToBackWaves = o.waves;
+  g.interleave = o.interleave;
   g.cluster.partition = parsePartition(o.partition, "--partition");
   g.cluster.composite.sparse = o.sparse;
   checkThreads(o.threads);
@@ -174,11 +180,12 @@ void runGrid(const BenchOptions& o) {
   const VoxelStorage storage = VoxelStorage::forVolume(info, g.cluster.voxels);
   BenchContext ctx{commandLine(o), o.volume.empty() ? dataset : o.volume,
                    info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees,
-                   storage.compactFormat() ? "compact" : "float", o.distance};
+                   storage.compactFormat() ? "compact" : "float", o.distance, o.interleave};
   std::printf("%s (%dx%dx%d %s, %s voxels), step %g, shading %s, eye at %g radii, median of %d frames turning %g "
-              "deg/frame\n\n",
+              "deg/frame%s\n\n",
               ctx.dataset.c_str(), info.dims.x, info.dims.y, info.dims.z, info.type.c_str(), ctx.voxels.c_str(),
-              double(o.step), o.shading.c_str(), double(o.distance), o.frames, double(o.degrees));
+              double(o.step), o.shading.c_str(), double(o.distance), o.frames, double(o.degrees),
+              o.interleave ? ", cells interleaved frame by frame" : "");
   std::printf("%s%s", formatPaperLayout(result.cells).c_str(), formatCellDetails(result.cells).c_str());
   const std::filesystem::path dir(o.outDir);
   writeFileAtomically((dir / "bench.csv").string(), benchCsv(ctx, result.cells));
@@ -291,6 +298,7 @@ void addBenchCommand(CLI::App& app) {
       "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 1,8,64 --balance space,cost\n"
       "  kdswap bench --dataset phantom:128 --sizes 256 --nodes 1,8,64 --network ethernet10\n"
       "  kdswap bench --dataset vessels:128 --sizes 256 --nodes 8 --speeds 1,0.25 --bricks-per-node 1,4\n"
+      "  kdswap bench --dataset phantom:256 --quantise 8 --sizes 512 --nodes 1,64 --interleave\n"
       "  kdswap bench --volume scan.raw --raw-dims 256x256x113 --raw-type uint16 --sizes 256 --nodes 1,8\n"
       "  kdswap bench --micro      kernels alone: ray casting per core, over vs memcpy, binary-swap\n"
       "  kdswap bench --paper      the paper's sourced cells beside ours\n"
@@ -333,6 +341,10 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
   cmd->add_flag("--waves", o->waves, "Front-to-back waves: nodes render nearest first, stopping where those in front stopped the light (see kdswap "
                 "render --help); cells read STRATEGY+waves");
+  cmd->add_flag("--interleave", o->interleave,
+                "Measure in rounds, every cell's frame k before any cell's frame k+1, so drift in the machine's speed "
+                "hits every cell alike (for comparing cells on a shared machine); each measured frame follows its "
+                "cell's previous one, rendered again (twice the frames), and every cell's cluster stays in memory");
   cmd->add_option("--balance", o->balance,
                   "Plane placements to compare: space, cost or space,cost (cost cells read STRATEGY+cost)")
       ->capture_default_str();
@@ -374,7 +386,7 @@ void addBenchCommand(CLI::App& app) {
     std::vector<CLI::Option*> options;
     for (const char* name : {"--dataset", "--volume", "--spacing", "--quantise", "--sizes", "--nodes", "--composite",
                              "--degrees", "--view", "--distance", "--step", "--shading", "--ert", "--tf", "--partition", "--sparse",
-                             "--waves", "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
+                             "--waves", "--interleave", "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
                              "--out-dir"})
       options.push_back(cmd->get_option(name));
     return options;

@@ -264,3 +264,64 @@ TEST_CASE("a grid with front-to-back waves labels its cells STRATEGY+waves, and 
   o.base.settings.frontToBackWaves = false;
   CHECK(runBenchGrid(*volume, o, {}, nullptr).cells.front().strategy == "binary-swap");
 }
+
+TEST_CASE("an interleaved grid measures every cell in rounds and reports what the cell-by-cell grid does") {
+  auto volume = test::makeBlobs(glm::ivec3(16, 14, 12));
+  BenchGridOptions o;
+  o.sizes = {16, 24};
+  o.nodes = {1, 2, 4};
+  o.strategies = {"binary-swap", "direct-send"};
+  o.frames = 2;
+  o.base.transfer = loadTransferFunction("grayscale");
+  const BenchResult sequential = runBenchGrid(*volume, o, {}, nullptr);
+  o.interleave = true;
+  std::vector<std::string> order;  // the cell each frame belonged to, in the order they ran
+  const BenchResult interleaved =
+      runBenchGrid(*volume, o, [&](const BenchProgress& p) { order.push_back(p.current); }, nullptr);
+  CHECK_FALSE(interleaved.interrupted);
+  REQUIRE(sequential.cells.size() == 12);
+  REQUIRE(interleaved.cells.size() == sequential.cells.size());
+  for (std::size_t i = 0; i < sequential.cells.size(); ++i) {
+    const BenchCell &a = sequential.cells[i], &b = interleaved.cells[i];
+    CAPTURE(i);
+    CHECK(a.strategy == b.strategy);
+    CHECK(a.nodes == b.nodes);
+    CHECK(a.width == b.width);
+    CHECK(b.frames == 2);
+    CHECK(a.samples == b.samples);  // the same views: frame k of a cell turns k degrees either way
+    CHECK(a.bytesSent == b.bytesSent);
+  }
+  // Rounds: each cell renders frame k - 1 again, then frame k measured; the first round takes
+  // every cell in report order, the second repeats it.
+  REQUIRE(order.size() == 2 * 2 * 12);
+  for (std::size_t c = 0; c < 12; ++c) {
+    CAPTURE(c);
+    CHECK(order[2 * c] == order[2 * c + 1]);
+    CHECK(order[2 * c] == order[24 + 2 * c]);
+    for (std::size_t d = 0; d < c; ++d) CHECK(order[2 * c] != order[2 * d]);
+  }
+  CHECK(order[0] == "16x16, P=1, binary-swap");
+  CHECK(order[22] == "24x24, P=4, direct-send");
+}
+
+TEST_CASE("an interleaved grid stopped midway keeps every cell with a frame measured, none more than one frame ahead") {
+  auto volume = test::makeBlobs(glm::ivec3(12, 10, 9));
+  BenchGridOptions o;
+  o.sizes = {16};
+  o.nodes = {1, 2, 4};
+  o.frames = 4;
+  o.interleave = true;
+  o.base.transfer = loadTransferFunction("grayscale");
+  std::atomic<bool> stop{false};
+  int frames = 0;
+  // A round (each cell: the previous frame again, then the measured one) and the first cell's
+  // frames of the next: then stop.
+  const BenchResult r = runBenchGrid(*volume, o, [&](const BenchProgress&) {
+    if (++frames == 8) stop = true;
+  }, &stop);
+  CHECK(r.interrupted);
+  REQUIRE(r.cells.size() == 3);
+  CHECK(r.cells[0].frames == 2);
+  CHECK(r.cells[1].frames == 1);
+  CHECK(r.cells[2].frames == 1);
+}

@@ -123,6 +123,10 @@ kdswap_cli_case(RenderSummaryOfOneNodeSaysNode CODE 0 STDOUT "^1 node, 16x16, bi
 kdswap_cli_case(BenchProgressInALogHasALineWhenACellStartsAndEnds CODE 0
                 EXPECT "^\\[0/2 cells\\] [^[]*\\[1/2 cells\\] [^[]*\\[1/2 cells\\] [^[]*\\[2/2 cells\\] [^[]*$"
                 ARGS bench --dataset phantom:16 --sizes 16 --nodes 1,2 --frames 3 --out-dir b)
+# Interleaved, the cell changes every frame: a log gets the first line and one per cell ended.
+kdswap_cli_case(BenchInterleavedProgressInALogHasALinePerCellEnded CODE 0
+                EXPECT "^\\[0/2 cells\\] [^[]*\\[1/2 cells\\] [^[]*\\[2/2 cells\\] [^[]*$"
+                ARGS bench --dataset phantom:16 --sizes 16 --nodes 1,2 --frames 3 --interleave --out-dir b)
 
 # The GUI's help is complete without the sources: every strategy, the node range, the script format.
 if(TARGET kdswap-gui)

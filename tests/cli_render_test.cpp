@@ -159,3 +159,16 @@ TEST_CASE("kdswap bench --distance frames the scene as render does: the same vie
   CHECK(benchSamples("3.4") == double(renderSamples));  // render's default distance
   CHECK(benchSamples("") > double(renderSamples));      // the bench's closer default: more of the frame
 }
+
+TEST_CASE("kdswap bench --interleave says so in bench.json and the recorded command") {
+  const fs::path dir = workDir() / "bench-interleave";
+  fs::remove_all(dir);
+  const Run bench = runKdswap("bench --dataset phantom:16 --sizes 16,24 --nodes 1,2 --frames 1 --interleave --out-dir " +
+                              dir.string());
+  CAPTURE(bench.err);
+  REQUIRE(bench.code == 0);
+  const nlohmann::json j = nlohmann::json::parse(test::readFile((dir / "bench.json").string()));
+  CHECK(j["settings"]["interleaved"] == true);
+  CHECK(j["command"].get<std::string>().find(" --interleave") != std::string::npos);
+  CHECK(j["cells"].size() == 4);
+}

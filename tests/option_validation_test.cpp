@@ -93,6 +93,11 @@ TEST_CASE("bench validates the view, distance, turn and threads like render, bef
   CHECK_FALSE(fs::exists(dir.file("bench")));  // nothing measured, nothing written
 }
 
+TEST_CASE("bench --interleave shapes a grid: the fixed-cell modes refuse it rather than ignore it") {
+  expectRefused("bench --targets --interleave", {"--interleave", "--targets"});
+  expectRefused("bench --micro --interleave", {"--interleave", "--micro"});
+}
+
 TEST_CASE("a folder or an out-of-range number as key file is named with the problem") {
   const TempDir dir;
   const std::string out = " --out-dir " + dir.file("anim");

@@ -1,7 +1,8 @@
 // The bench grid: the paper's timing tables (Tables 1-8) measured over image sizes x node
 // counts x compositing strategies, K frames per cell with the view turning, median reported.
 // One VirtualCluster per (strategy, node count) is reused across sizes and frames, so data
-// distribution (paper Table 5) is paid once and never enters a cell.
+// distribution (paper Table 5) is paid once and never enters a cell. Cells run one after another,
+// or interleaved frame by frame (BenchGridOptions::interleave).
 #pragma once
 
 #include <atomic>
@@ -32,6 +33,10 @@ struct BenchGridOptions {
   std::vector<double> speedPattern;
   int frames = 5;                //!< measured frames per cell; one warm-up frame more is excluded
   float degreesPerFrame = 1.0f;  //!< the azimuth turns this much between frames
+  //! Rounds instead of cell after cell: every cell's frame k before any cell's frame k + 1, so
+  //! that drift in the machine's speed (shared machines drift by tens of percent within minutes)
+  //! hits every cell alike. Every cell's cluster then stays in memory for the whole run.
+  bool interleave = false;
   //! View, transfer function, settings (width/height ignored). The view is closer than kdswap's
   //! default framing, as in every figure the README records and in scripts/vtk_baseline.py.
   FrameRequest base = [] {
@@ -67,6 +72,7 @@ struct BenchProgress {
   int cellsDone = 0, cellsTotal = 0;
   double elapsedSeconds = 0, remainingSeconds = 0;  //!< remaining: estimated from work done
   std::string current;                                //!< "256x256, P=8, binary-swap"
+  bool interleaved = false;  //!< rounds over the cells: `current` changes every frame
 };
 
 struct BenchResult {

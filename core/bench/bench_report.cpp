@@ -142,7 +142,8 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
                    {"shading", ctx.shading},
                    {"frames", ctx.frames},
                    {"degrees_per_frame", ctx.degreesPerFrame},
-                   {"view_distance", ctx.viewDistance}};
+                   {"view_distance", ctx.viewDistance},
+                   {"interleaved", ctx.interleaved}};
   j["statistic"] = "median over frames (warm-up frame excluded); render and composite are maxima over nodes";
   j["interrupted"] = result.interrupted;
   nlohmann::json cells = nlohmann::json::array();

@@ -23,6 +23,7 @@ struct BenchContext {
   float degreesPerFrame = 0;
   std::string voxels = "float";  //!< the bricks' storage: "float" or "compact"
   float viewDistance = 0;        //!< eye distance, bounding-sphere radii
+  bool interleaved = false;      //!< frames measured in rounds over the cells (BenchGridOptions::interleave)
 };
 
 //! Paper layout, one table per strategy: times in ms, maximum over nodes.

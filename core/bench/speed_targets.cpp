@@ -41,11 +41,15 @@ CellSpec withWaves(CellSpec spec) {
 }
 constexpr const char* kWavesLabel = " with --waves (front-to-back waves, beyond the paper)";
 
-BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, const std::atomic<bool>* stop,
-                  bool& interrupted) {
+//! The cells of `spec` at node counts `nodes` (default: spec.nodes alone); with `interleave`
+//! measured in rounds (BenchGridOptions::interleave), so their ratio is free of the machine's drift.
+std::vector<BenchCell> measureCells(const VolumeSource& source, const CellSpec& spec, int frames,
+                                    const std::atomic<bool>* stop, bool& interrupted, std::vector<int> nodes = {},
+                                    bool interleave = false) {
   BenchGridOptions o;
   o.sizes = {spec.size};
-  o.nodes = {spec.nodes};
+  o.nodes = nodes.empty() ? std::vector<int>{spec.nodes} : nodes;
+  o.interleave = interleave;
   o.strategies = {spec.strategy};
   o.frames = frames;
   o.base.settings.stepVoxels = spec.step;
@@ -55,8 +59,25 @@ BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, 
   o.base.transfer = loadTransferFunction(!spec.transfer.empty() ? spec.transfer
                                                                  : (info.preset.empty() ? "grayscale" : info.preset));
   const BenchResult r = runBenchGrid(source, o, {}, stop);
-  interrupted = r.interrupted || r.cells.empty();
-  return r.cells.empty() ? BenchCell{} : r.cells.front();
+  interrupted = r.interrupted || r.cells.size() != o.nodes.size();
+  std::vector<BenchCell> cells = r.cells;
+  cells.resize(o.nodes.size());  // an interrupted run's missing cells read 0
+  return cells;
+}
+
+BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, const std::atomic<bool>* stop,
+                  bool& interrupted) {
+  return measureCells(source, spec, frames, stop, interrupted).front();
+}
+
+//! Wall time at P = spec.nodes over wall time at P = 1, the two cells measured in turns.
+struct WallRatio {
+  double ratio = 0, p1Seconds = 0, pSeconds = 0;
+};
+WallRatio interleavedWallRatio(const VolumeSource& source, const CellSpec& spec, int frames,
+                               const std::atomic<bool>* stop, bool& interrupted) {
+  const std::vector<BenchCell> c = measureCells(source, spec, frames, stop, interrupted, {1, spec.nodes}, true);
+  return {c[0].wallSeconds > 0 ? c[1].wallSeconds / c[0].wallSeconds : 0.0, c[0].wallSeconds, c[1].wallSeconds};
 }
 
 std::string gridCommand(const std::string& data, const CellSpec& s, int frames, const char* extra = "") {
@@ -110,15 +131,15 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                  /*firstRunOnly=*/true});
   if (stopped()) return out;
 
-  say("phantom:256 uint8, P=1 ...");
-  CellSpec p1 = p64;
-  p1.nodes = 1;
-  const BenchCell b = measure(phantom, p1, o.frames, stop, interrupted);
+  // The ratio's two cells are measured in turns (--interleave), so the machine's drift between
+  // minutes, which moves single figures by tens of percent, cancels out of it.
+  say("phantom:256 uint8, P=1 and P=64 in turns ...");
+  const WallRatio ratio = interleavedWallRatio(phantom, p64, o.frames, stop, interrupted);
   out.push_back({"P=64 wall <= 1.15 x P=1 wall (phantom 256^3 uint8, 512x512, step 1)",
-                 "kdswap bench " + phantomData + " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --frames " +
+                 "kdswap bench " + phantomData + " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --interleave --frames " +
                      std::to_string(o.frames),
-                 b.wallSeconds > 0 ? a.wallSeconds / b.wallSeconds : 0.0, 1.15, "x", false, !interrupted,
-                 "P=1 wall " + ms(b.wallSeconds)});
+                 ratio.ratio, 1.15, "x", false, !interrupted,
+                 "P=1 wall " + ms(ratio.p1Seconds) + ", P=64 wall " + ms(ratio.pSeconds) + ", measured in turns"});
   if (stopped()) return out;
 
   say("phantom:256 uint8, P=64, front-to-back waves ...");
@@ -128,11 +149,15 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     out.push_back({std::string("phantom 256^3 uint8, 512x512, P=64, step 1, shading: wall per frame") + kWavesLabel,
                    gridCommand(phantomData, w64, o.frames), w.wallSeconds * 1e3, 29.0, "ms", false, !interrupted, ""});
     if (vtkHere) out.push_back(halfOfVtkHere(out.back(), "phantom 256^3 uint8, P=64, --waves", o.vtkMs[1]));
+    if (stopped()) return out;
+    const WallRatio wavesRatio = interleavedWallRatio(phantom, w64, o.frames, stop, interrupted);
     out.push_back({std::string("P=64 wall <= 1.15 x P=1 wall (phantom 256^3 uint8, 512x512, step 1)") + kWavesLabel,
-                   "kdswap bench " + phantomData + " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --waves --frames " +
+                   "kdswap bench " + phantomData +
+                       " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --waves --interleave --frames " +
                        std::to_string(o.frames),
-                   b.wallSeconds > 0 ? w.wallSeconds / b.wallSeconds : 0.0, 1.15, "x", false, !interrupted,
-                   "P=1 wall " + ms(b.wallSeconds) + " (P=1 has no waves: one node)"});
+                   wavesRatio.ratio, 1.15, "x", false, !interrupted,
+                   "P=1 wall " + ms(wavesRatio.p1Seconds) + " (P=1 has no waves: one node), P=64 wall " +
+                       ms(wavesRatio.pSeconds) + ", measured in turns"});
   }
   if (stopped()) return out;
 
