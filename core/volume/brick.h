@@ -15,6 +15,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/util/huge_page_allocator.h"
 #include "core/volume/cell_range_codes.h"
 #include "core/volume/voxel_box.h"
 #include "core/volume/voxel_storage.h"
@@ -113,8 +114,8 @@ class Brick {
   glm::vec3 spacing_{1.0f};
   std::size_t strideY_ = 0, strideZ_ = 0;
   VoxelStorage storage_;
-  std::vector<Voxel> voxels_;          //!< float storage
-  std::vector<CompactVoxel> compact_;  //!< compact storage
+  std::vector<Voxel, HugePageAllocator<Voxel>> voxels_;                 //!< float storage
+  std::vector<CompactVoxel, HugePageAllocator<CompactVoxel>> compact_;  //!< compact storage
   std::vector<float> shell_;  //!< Shipping::Yes: values of received_ outside stored_, in received_'s order
   Shipping shipping_ = Shipping::No;
   int cellShift_ = 2;
