@@ -214,7 +214,7 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
                                 "(kdswap or ParaView colour map). Default: the data set's preset")
       ->check(nonEmpty());
   cmd->add_option("--shading", o.shading, "Phong shading from precomputed gradients: on or off")->capture_default_str();
-  cmd->add_option("--jitter", o.jitter, "Per-ray lattice phase against ring artefacts: on or off")->capture_default_str();
+  cmd->add_option("--jitter", o.jitter, "Per-ray lattice phase (a blue-noise tile over the pixels) against ring artefacts: on or off")->capture_default_str();
   cmd->add_option("--ert", o.ert, "Early ray termination opacity threshold, in (0, 1] (1 disables)")
       ->check(number())
       ->capture_default_str();

@@ -270,12 +270,15 @@ TEST_CASE("compact and float storage give images within a grey level of each oth
     // range allows, which shows only where the gradient itself nearly vanishes: on the crest of a
     // thin smooth shell, as the phantom's skull is at 48^3 (under a voxel thick, smoothed over three).
     // There shading may differ by a few grey levels (measured: 8.7% of the pixels by more than one,
-    // none by more than seven); elsewhere, as for the other volumes, within one.
+    // none by more than seven with white-noise ray phases; 8.04 with blue-noise phases, whose
+    // samples land on the crest elsewhere); elsewhere, as for the other volumes, within one.
     const StorageComparison shaded = compareStorage(*volume, true);
     CHECK(shaded.covered > 1000);
     CHECK(double(shaded.compactSamples) == doctest::Approx(double(shaded.floatSamples)).epsilon(0.01));
     if (std::string(data) == "phantom:48") {
-      CHECK(shaded.largest < 8.0f / 255.0f);
+      MESSAGE("largest difference " << shaded.largest * 255.0f << " grey levels, " << shaded.far << " of "
+                                    << shaded.covered << " pixels by more than one");
+      CHECK(shaded.largest < 9.0f / 255.0f);
       CHECK(shaded.far * 10 <= shaded.covered);  // at most 10% differ by more than a grey level
     } else {
       CHECK(shaded.far * 200 <= shaded.covered);

@@ -9,6 +9,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/camera/blue_noise.h"
 #include "core/camera/view.h"
 #include "core/image/rect.h"
 
@@ -17,9 +18,9 @@ namespace kdswap {
 struct Ray {
   glm::vec3 origin;     //!< world space; sample k sits at origin + direction * ((k + offset) * step)
   glm::vec3 direction;  //!< unit length, world space
-  float offset = 0.0f;  //!< this ray's lattice phase in [0, 1): a hash of the pixel, so every
-                        //!< brick uses the same lattice for a ray while neighbouring rays differ
-                        //!< (jitter turns the rings of a fixed lattice into fine noise)
+  float offset = 0.0f;  //!< this ray's lattice phase in (0, 1): the pixel's blue-noise value, so
+                        //!< every brick uses the same lattice for a ray while neighbouring rays
+                        //!< differ (jitter turns the rings of a fixed lattice into fine grain)
 };
 
 class Camera {
@@ -35,16 +36,8 @@ class Camera {
     if (orthographic_) return Ray{eye_ + sx * right_ + sy * up_, forward_, offset};
     return Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), offset};
   }
-  //! A ray's lattice phase: an integer hash of the pixel (multiply-xorshift rounds) in [0, 1).
-  static float pixelOffset(int px, int py) {
-    std::uint32_t h = std::uint32_t(px) * 0x8da6b343u ^ std::uint32_t(py) * 0xd8163841u;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return float(h >> 8) * (1.0f / 16777216.0f);
-  }
+  //! A ray's lattice phase: the pixel's value in the blue-noise tile (blue_noise.h), in (0, 1).
+  static float pixelOffset(int px, int py) { return BlueNoiseTile::instance().at(px, py); }
   //! Pixel coordinates (continuous; pixel centres at +0.5) of a world point, or nothing when the
   //! point is at or behind the eye (perspective).
   std::optional<glm::vec2> project(const glm::vec3& world) const;

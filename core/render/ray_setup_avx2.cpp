@@ -17,16 +17,12 @@ namespace {
 KDSWAP_AVX2 inline __m256 splat(float v) { return _mm256_set1_ps(v); }
 KDSWAP_AVX2 inline __m256 absolute(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v); }
 
-//! Camera::pixelOffset of pixels (px, py): the same multiply-xorshift rounds on 32-bit lanes.
+//! Camera::pixelOffset of pixels (px, py): their cells of the blue-noise tile, gathered.
 KDSWAP_AVX2 inline __m256 pixelOffsets(__m256i px, int py) {
-  __m256i h = _mm256_xor_si256(_mm256_mullo_epi32(px, _mm256_set1_epi32(int(0x8da6b343u))),
-                               _mm256_set1_epi32(int(std::uint32_t(py) * 0xd8163841u)));
-  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
-  h = _mm256_mullo_epi32(h, _mm256_set1_epi32(int(0x7feb352du)));
-  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 15));
-  h = _mm256_mullo_epi32(h, _mm256_set1_epi32(int(0x846ca68bu)));
-  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
-  return _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_srli_epi32(h, 8)), splat(1.0f / 16777216.0f));
+  constexpr int mask = BlueNoiseTile::kSide - 1;
+  const __m256i cell = _mm256_add_epi32(_mm256_and_si256(px, _mm256_set1_epi32(mask)),
+                                        _mm256_set1_epi32((py & mask) * BlueNoiseTile::kSide));
+  return _mm256_i32gather_ps(BlueNoiseTile::instance().data(), cell, 4);
 }
 
 //! One axis of RayCaster::segmentFor's clip: parallel lanes (|d| < kTinyDirection) are rejected
