@@ -2,6 +2,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -9,9 +12,12 @@
 #include "app/frame_progress.h"
 #include "app/output_files.h"
 #include "app/scene_options.h"
+#include "core/animation/progress_meter.h"
 #include "core/cluster/phase_grid.h"
+#include "core/image/image_average.h"
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
+#include "core/render/voxel_ray.h"
 #include "core/util/error.h"
 #include "core/util/file_writer.h"
 
@@ -25,9 +31,12 @@ struct RenderOptions {
   std::string phases;
   std::string phasesDir;
   std::string background = "0,0,0";
+  int passes = 1;
   bool verify = false;
   bool quiet = false;
 };
+
+constexpr int kMaxPasses = 256;
 
 constexpr float kVerifyTolerance = 1e-5f;
 
@@ -81,13 +90,34 @@ void run(const RenderOptions& o) {
 
   VirtualCluster cluster(*scene.source, scene.cluster);
   if (scene.fault.armed()) cluster.injectFault(scene.fault);
+  // Pass i samples the lattice shifted by latticePassShift(i); the image is the passes' mean. The
+  // table, stats and stages are the first pass's (an ordinary frame).
   FrameResult frame;
-  {
-    const FrameProgress progress(cluster, !o.quiet);
-    frame = cluster.renderFrame(scene.request);
+  ImageAverage average(Rect{0, 0, scene.request.width, scene.request.height});
+  double passesWall = 0.0;
+  std::optional<ProgressMeter> progressOfPasses;  // "frames done" of the passes, when there are several
+  if (o.passes > 1 && !o.quiet) progressOfPasses.emplace(stderr, ::isatty(fileno(stderr)), o.passes, 0);
+  for (int pass = 0; pass < o.passes; ++pass) {
+    FrameRequest request = scene.request;
+    request.settings.phaseShift = latticePassShift(pass);
+    request.recordPhases = scene.request.recordPhases && pass == 0;
+    FrameResult result;
+    {
+      const FrameProgress progress(cluster, !o.quiet);
+      result = cluster.renderFrame(request);
+    }
+    average.add(result.image);
+    passesWall += result.stats.wallSeconds;
+    if (pass == 0) frame = std::move(result);
+    if (progressOfPasses) progressOfPasses->frameDone();
   }
-  writeImage(o.out, frame.image, writeOptions);
+  if (progressOfPasses) progressOfPasses->finish();
+  const Image image = o.passes > 1 ? average.mean() : frame.image;
+  writeImage(o.out, image, writeOptions);
   if (!o.quiet) std::printf("%s", formatFrameTable(frame.stats).c_str());
+  if (!o.quiet && o.passes > 1)
+    std::printf("  %d passes averaged, lattice shifted by the R1 sequence; wall %.2f s in all (the table: pass 1)\n",
+                o.passes, passesWall);
   if (!o.quiet) std::printf("wrote %s\n", o.out.c_str());
   if (frame.phases) {
     if (!o.phases.empty()) {
@@ -102,13 +132,21 @@ void run(const RenderOptions& o) {
   }
 
   nlohmann::json stats = frame.stats.toJson();
+  if (o.passes > 1) stats["passes"] = {{"count", o.passes}, {"wall_s", passesWall}};
   bool verified = true;
   if (o.verify) {
+    // The single-node reference of every pass, averaged as the passes are.
     const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
-    const ReferenceResult ref =
-        renderReference(whole, scene.request.view, scene.request.width, scene.request.height, scene.request.transfer,
-                        scene.request.settings, resolveValueRange(scene.request.settings, scene.source->info()));
-    const float diff = maxAbsDifference(frame.image, ref.image, frame.image.rect());
+    ImageAverage reference(average.frame());
+    for (int pass = 0; pass < o.passes; ++pass) {
+      RenderSettings settings = scene.request.settings;
+      settings.phaseShift = latticePassShift(pass);
+      reference.add(renderReference(whole, scene.request.view, scene.request.width, scene.request.height,
+                                    scene.request.transfer, settings,
+                                    resolveValueRange(settings, scene.source->info()))
+                        .image);
+    }
+    const float diff = maxAbsDifference(image, reference.mean(), image.rect());
     // Early ray termination is local to each brick, so below a threshold of 1 a distributed ray
     // may keep up to (1 - threshold) more light than the whole ray: that is the bound then.
     const float ert = scene.request.settings.earlyTermination;
@@ -132,6 +170,7 @@ void addRenderCommand(CLI::App& app) {
       "Examples:\n"
       "  kdswap render --out head.png\n"
       "  kdswap render --nodes 8 --phases stages.png --out head.png --stats frame.json\n"
+      "  kdswap render --passes 16 --size 1024x1024 --out still.png\n"
       "  kdswap render --volume ../shared/data/cthead.nhdr --up -z --tf ct-bone --nodes 16 --verify\n");
   addSceneOptions(cmd, options->scene);
   addClusterOptions(cmd, options->scene);
@@ -148,6 +187,11 @@ void addRenderCommand(CLI::App& app) {
       ->check(nonEmpty());
   cmd->add_option("--phases-dir", options->phasesDir, "Write every stage of every node as its own PNG in DIR")
       ->check(nonEmpty());
+  cmd->add_option("--passes", options->passes,
+                  "Average N frames whose sampling lattices are shifted (R1 sequence) against rings and grain: "
+                  "a still image's quality for N times the time")
+      ->check(CLI::Range(1, kMaxPasses))
+      ->capture_default_str();
   cmd->add_flag("--verify", options->verify,
                 "Also render the single-node reference; exit 1 if they differ by more than 1e-5 (plus the "
                 "early-termination bound when --ert < 1)");

@@ -102,6 +102,8 @@ kdswap_cli_case(UnknownCompositeNamesTheOption
                 ARGS render ${_tiny} --composite foo)
 kdswap_cli_case(BenchUnknownCompositeNamesTheOption EXPECT "kdswap: --composite .foo.: expected one of binary-swap"
                 ARGS bench ${_benchTiny} --composite binary-swap,foo --out-dir b)
+kdswap_cli_case(RenderPassesOutsideItsRangeAreRefused EXPECT "kdswap: --passes: Value 0 not in range 1 to 256"
+                ARGS render ${_tiny} --passes 0)
 kdswap_cli_case(UnknownPartitionNamesTheOption EXPECT "kdswap: --partition .oct.: expected kd or slab"
                 ARGS render ${_tiny} --partition oct)
 kdswap_cli_case(UnknownProjectionNamesTheOption EXPECT "kdswap: --projection .fisheye.: expected perspective or orthographic"

@@ -71,6 +71,24 @@ TEST_CASE("kdswap render --verify --stats writes the documented JSON keys and pa
   CHECK(j["verify"]["max_abs_diff"].get<double>() <= 1e-5);
 }
 
+TEST_CASE("kdswap render --passes averages shifted lattices, records them and verifies against the same passes") {
+  const fs::path json = workDir() / "passes.json", one = workDir() / "one.exr", four = workDir() / "four.exr";
+  const Run run = runKdswap("render --dataset phantom:48 --size 64x48 --nodes 5 --ert 1 --passes 4 --verify --stats " +
+                            json.string() + " --out " + four.string());
+  CHECK(run.code == 0);
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  CHECK(j["passes"]["count"] == 4);
+  CHECK(j["passes"]["wall_s"].get<double>() >= j["wall_s"].get<double>());  // four frames, the table's the first
+  CHECK(j["verify"]["max_abs_diff"].get<double>() <= 1e-5);
+  // The mean differs from the first pass alone (its lattice is one of four), but only a little.
+  REQUIRE(runKdswap("render --dataset phantom:48 --size 64x48 --nodes 5 --ert 1 --out " + one.string()).code == 0);
+  const Image a = readImage(one.string()), b = readImage(four.string());
+  const float diff = maxAbsDifference(a, b, a.rect());
+  CHECK(diff > 1e-3f);
+  CHECK(diff < 0.25f);
+}
+
 TEST_CASE("kdswap render --phases writes the Figure 6 grid") {
   const fs::path grid = workDir() / "grid.png";
   fs::remove(grid);

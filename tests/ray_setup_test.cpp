@@ -1,10 +1,12 @@
 // The eight-ray setup (AVX2) against Camera::ray and VoxelRay, lane by lane and bit for bit, over
-// perspective and orthographic views, odd frame sizes, spacings and jitter on and off. (That the
-// clip and lattice indices match too is checked through render() = castRay in ray_march_test.cpp.)
+// perspective and orthographic views, odd frame sizes, spacings, jitter on and off and lattice phase
+// shifts (kdswap render --passes). (That the clip and lattice indices match too is checked through
+// render() = castRay in ray_march_test.cpp.)
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include "core/camera/camera.h"
 #include "core/render/ray_setup.h"
@@ -27,7 +29,8 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
   long lanes = 0, differing = 0, crossing = 0, windows = 0, wrongEnds = 0, ownedEnds = 0;
   for (const Projection projection : {Projection::Perspective, Projection::Orthographic})
     for (const float azimuth : {0.0f, 33.0f, 90.0f, 250.0f})
-      for (const bool jitter : {false, true}) {
+      for (const auto& [jitter, shift] : {std::pair{false, 0.0f}, std::pair{true, 0.0f}, std::pair{false, 0.37f},
+                                          std::pair{true, latticePassShift(3)}}) {
         View view;
         view.distance = 2.5f;  // close: the volume fills most of the small frame
         view.azimuthDeg = azimuth;
@@ -39,10 +42,11 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
         const Camera camera(view, glm::vec3(0.0f), worldHi, width, height);
         RenderSettings settings;
         settings.jitter = jitter;
+        settings.phaseShift = shift;  // a pass of kdswap render --passes
         settings.stepVoxels = 0.5f;
         const VoxelRay::Scale scale(spacing, settings);
         const RaySetupConstants c{camera.basis(), scale.inverseSpacing, scale.inverseStep, scale.jitter,
-                                  glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), 61.0f,
+                                  scale.phaseShift,   glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), 61.0f,
                                   glm::vec3(8.0f, 4.0f, 10.0f), glm::vec3(40.0f, 50.0f, 60.0f), scale.step};
         // RayCaster's exact ownership rule for lattice index k of a lane's ray.
         const auto owned = [&](const RayLanes8& r, int j, long k) {
@@ -81,7 +85,7 @@ TEST_CASE("eight rays set up at once equal Camera::ray and VoxelRay pixel by pix
             }
           }
       }
-  CHECK(lanes == 16L * 61 * 37);
+  CHECK(lanes == 32L * 61 * 37);  // 2 projections x 4 views x 4 phase settings, every pixel
   CHECK(differing == 0);
   CHECK(crossing > lanes / 10);  // the clip box is in view: many rays cross it, not all
   CHECK(crossing < lanes);

@@ -111,6 +111,7 @@ std::string settingsText(const RenderSettings& s) {
                      (s.skipEmptySpace ? "on" : "off") + ", phong " + exact(s.ambient) + " " + exact(s.diffuse) + " " +
                      exact(s.specular) + " " + exact(s.shininess);
   if (s.valueRange) text += ", range " + exact(s.valueRange->x) + " " + exact(s.valueRange->y);
+  if (s.phaseShift != 0.0f) text += ", phase shift " + exact(s.phaseShift);
   return text;
 }
 

@@ -25,6 +25,7 @@ OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, cons
   const bool simdRays = raySetup8Available();
   RaySetupConstants rays8{};
   rays8.camera = camera.basis(), rays8.inverseSpacing = scale.inverseSpacing, rays8.jitter = scale.jitter;
+  rays8.phaseShift = scale.phaseShift;
   tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       std::int32_t* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);

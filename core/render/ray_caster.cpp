@@ -251,8 +251,10 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   const VoxelRay::Scale scale(spacing, settings_);
   const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera, scale.step) : 0;
   const bool simdSetup = raySetup8Available();
-  const RaySetupConstants setup{camera.basis(), scale.inverseSpacing, scale.inverseStep, scale.jitter, clip.lo, clip.hi,
-                                clip.hiMagnitude, glm::vec3(brick_.owned().lo), glm::vec3(brick_.owned().hi), scale.step};
+  const RaySetupConstants setup{camera.basis(),     scale.inverseSpacing, scale.inverseStep,
+                                scale.jitter,       scale.phaseShift,     clip.lo,
+                                clip.hi,            clip.hiMagnitude,     glm::vec3(brick_.owned().lo),
+                                glm::vec3(brick_.owned().hi), scale.step};
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).

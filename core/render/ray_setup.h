@@ -20,6 +20,7 @@ struct RaySetupConstants {
   glm::vec3 inverseSpacing;  //!< world -> voxel coordinates (VoxelRay::Scale)
   float inverseStep;
   bool jitter;
+  float phaseShift;          //!< RenderSettings::phaseShift
   glm::vec3 clipLo, clipHi;  //!< the box rays are clipped to, voxel coordinates
   float clipHiMagnitude;     //!< for the clip's rounding margin
   //! The brick's owned box [ownedLo, ownedHi) and the sample step (voxels per unit of t): for the
@@ -60,7 +61,7 @@ bool raySetup8Available();
 //! Pixels x0 .. x0 + 7 of row y (lanes past the frame compute harmless numbers). Only when
 //! raySetup8Available().
 void setupRays8(const RaySetupConstants& c, int x0, int y, RayLanes8& out);
-//! The rays alone of setupRays8 (only camera, inverseSpacing and jitter of `c` are read); the
+//! The rays alone of setupRays8 (only camera, inverseSpacing, jitter and phaseShift of `c` are read); the
 //! same bits. Only when raySetup8Available().
 void voxelRays8(const RaySetupConstants& c, int x0, int y, VoxelRays8& out);
 

@@ -101,7 +101,10 @@ KDSWAP_AVX2 inline Rays raysOf(const RaySetupConstants& c, int x0, int y) {
                oz = _mm256_mul_ps(woz, splat(c.inverseSpacing.z));
   const __m256 dx = _mm256_mul_ps(wdx, splat(c.inverseSpacing.x)), dy = _mm256_mul_ps(wdy, splat(c.inverseSpacing.y)),
                dz = _mm256_mul_ps(wdz, splat(c.inverseSpacing.z));
-  const __m256 phase = c.jitter ? pixelOffsets(px, y) : _mm256_setzero_ps();
+  // latticePhase: offset + shift, less 1 where that reaches 1.
+  const __m256 sum = _mm256_add_ps(c.jitter ? pixelOffsets(px, y) : _mm256_setzero_ps(), splat(c.phaseShift));
+  const __m256 phase =
+      _mm256_sub_ps(sum, _mm256_and_ps(_mm256_cmp_ps(sum, splat(1.0f), _CMP_GE_OQ), splat(1.0f)));
   return Rays{ox, oy, oz, dx, dy, dz, wdx, wdy, wdz, phase};
 }
 

@@ -12,6 +12,10 @@ struct RenderSettings {
   float earlyTermination = 0.99f;   //!< stop a ray once its opacity reaches this; 1 disables
   bool shading = true;              //!< Phong shading from the precomputed gradients
   bool jitter = true;               //!< per-ray lattice phase (Ray::offset) against ring artefacts
+  //! Added to every ray's lattice phase (mod 1): passes of one view with different shifts sample
+  //! different lattices, and their average (latticePassShift, kdswap render --passes, the desktop
+  //! app's refinement) integrates the lattice's rings and grain away.
+  float phaseShift = 0.0f;
   bool skipEmptySpace = true;       //!< jump over invisible regions (exact; off only to test that it is)
   //! Skip rays that opaque matter in front of a node's brick ends (exact; see occlusion_grid.h).
   //! It needs every brick's cell summary: gathered in the virtual cluster, merged across MPI ranks.
