@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   app.add_flag("--waves", o.waves,
                "Front-to-back waves (beyond the paper): nodes render nearest first and stop where the light in front "
                "is spent (one brick per node); also a checkbox under Rendering");
+  app.add_option("--refine", o.refinePasses,
+                 "Once the view rests, average this many frames on shifted sampling lattices (1..64, 1: off), "
+                 "which takes the grain and rings out; also a slider under Rendering")
+      ->capture_default_str();
   app.add_option("--tf", o.tf, "Transfer-function preset or JSON file (default: the data set's preset)");
   app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels, 16..4096")->capture_default_str();
   app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();

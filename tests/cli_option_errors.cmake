@@ -135,6 +135,9 @@ if(TARGET kdswap-gui)
   kdswap_cli_case(GuiHelpListsStrategiesNodeRangeAndScriptCommands PROGRAM kdswap-gui CODE 0
                   STDOUT "P, 1\\.\\.4096.*binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping.*move TARGET. glide DX DY FRAMES"
                   FORBID "input_script\\.h|binary-swap, \\.\\.\\." ARGS --help)
+  # Checked before any window opens, so it needs no display.
+  kdswap_cli_case(GuiRefinePassesOutsideTheirRangeAreRefused PROGRAM kdswap-gui
+                  EXPECT "kdswap-gui: --refine 0: expected 1\\.\\.64" ARGS --refine 0)
 endif()
 
 # Front-to-back waves render each node's one brick in visibility order: over-decomposition (bricks

@@ -89,6 +89,9 @@ void initState(GuiState& state, const GuiOptions& o) {
   state.scene.cluster.bricksPerNode = o.bricksPerNode;
   checkWavesWithBricksPerNode(o.waves, o.bricksPerNode);
   state.request.settings.frontToBackWaves = o.waves;
+  if (o.refinePasses < 1 || o.refinePasses > kMaxRefinePasses)
+    throw Error("--refine " + std::to_string(o.refinePasses) + ": expected 1.." + std::to_string(kMaxRefinePasses));
+  state.refinePasses = o.refinePasses;
   // Leave a core for the UI thread (and Mesa's rasteriser) so the window stays responsive.
   state.scene.cluster.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
   if (o.nodes < 1 || o.nodes > kMaxNodes) throw Error("--nodes " + std::to_string(o.nodes) + ": expected 1.." + std::to_string(kMaxNodes));
@@ -143,11 +146,15 @@ void pollWorker(GuiState& state, RenderWorker& worker, DamageRenderer& renderer)
     state.frameTexture.upload(frame->image);
     renderer.textureChanged(state.frameTexture.imguiId());
     if (!frame->preview) {
+      // A refinement pass brings a new image but the first pass's stages: upload those once.
+      const bool newStages = !state.fullFrame || state.fullFrame->id != frame->id || frame->passes == 1;
       state.fullFrame = frame;
       state.fullTexture.upload(frame->image);
-      state.stagesTexture.upload(frame->stages.pixels);
       renderer.textureChanged(state.fullTexture.imguiId());
-      renderer.textureChanged(state.stagesTexture.imguiId());
+      if (newStages) {
+        state.stagesTexture.upload(frame->stages.pixels);
+        renderer.textureChanged(state.stagesTexture.imguiId());
+      }
     }
     if (state.logShown)
       state.shownLog.push_back({state.uiFrame, frame->id, frame->preview, frame->request.width, frame->request.height,
@@ -179,7 +186,7 @@ void submitRequests(GuiState& state, RenderWorker& worker, double now, double& l
     state.lastSubmitted = worker.submit(state.scene, previewOf(state.request), true);
     lastMove = now, state.refinePending = true;
   } else if (state.wantFull || (state.refinePending && now - lastMove > kRefineAfterSeconds)) {
-    state.lastSubmitted = worker.submit(state.scene, state.request, false);
+    state.lastSubmitted = worker.submit(state.scene, state.request, false, state.refinePasses);
     state.refinePending = false;
   }
   state.wantPreview = state.wantFull = false;
@@ -259,7 +266,7 @@ class GuiLoop {
     RenderWorker worker;
     SweepWorker sweep;
     state_.sweep = &sweep;
-    state_.lastSubmitted = worker.submit(state_.scene, state_.request, false);
+    state_.lastSubmitted = worker.submit(state_.scene, state_.request, false, state_.refinePasses);
     start_ = glfwGetTime();
     double deadline = start_, lastMove = 0;
     int exitCode = -1;

@@ -17,6 +17,7 @@ struct GuiOptions {
   std::string balance = "space";        //!< plane placement: space or cost (from the transfer function)
   int bricksPerNode = 1;                //!< over-decomposition, 1..64
   bool waves = false;                   //!< front-to-back waves (RenderSettings::frontToBackWaves)
+  int refinePasses = 8;                 //!< GuiState::refinePasses, 1..kMaxRefinePasses
   std::string tf;                       //!< preset name or JSON path; empty: the data set's preset
   int imageSize = 512;                  //!< rendered frame is imageSize x imageSize
   int windowWidth = 1600, windowHeight = 1000;

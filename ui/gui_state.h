@@ -78,11 +78,16 @@ struct SettingsUi {
   int bricksPerNode = 0;  //!< bricks per node while its slider is dragged
 };
 
+inline constexpr int kMaxRefinePasses = 64;  //!< GuiState::refinePasses' upper bound (--refine, the slider)
+
 struct GuiState {
   // The user's intent.
   SceneSpec scene;
   FrameRequest request;      //!< view, full-quality size, transfer function, settings
   bool showBricks = true;
+  //! A still view's full frame is refined to the mean of this many passes on shifted sampling
+  //! lattices (kdswap render --passes), rendered while nothing moves; 1: no refinement.
+  int refinePasses = 8;
   bool tfEdited = false;     //!< the user chose a transfer function; do not replace it by a preset
 
   // Requests raised by panels this UI frame.

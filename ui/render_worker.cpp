@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image/image_average.h"
+#include "core/render/voxel_ray.h"
 #include "core/util/clock.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
@@ -87,12 +89,12 @@ RenderWorker::~RenderWorker() {
   worker_.join();
 }
 
-std::uint64_t RenderWorker::submit(const SceneSpec& scene, const FrameRequest& request, bool preview) {
+std::uint64_t RenderWorker::submit(const SceneSpec& scene, const FrameRequest& request, bool preview, int passes) {
   std::uint64_t id;
   {
     std::lock_guard lock(mutex_);
     id = nextId_++;
-    pending_ = Job{id, scene, request, preview, nowSeconds()};
+    pending_ = Job{id, scene, request, preview, preview ? 1 : std::max(1, passes), nowSeconds()};
   }
   wake_.notify_one();
   return id;
@@ -202,9 +204,36 @@ void RenderWorker::process(const Job& job) {
     frame->stages = buildStageAtlas(*result.phases, kStageCellSide);
     frame->phases = result.phases;
   }
+  frame->passesRequested = job.passes;
   frame->seconds = nowSeconds() - job.submitted;
+  {
+    std::lock_guard lock(mutex_);
+    newFrame_ = frame;
+  }
+  if (job.passes > 1) refine(job, *frame, result.image);
+}
+
+bool RenderWorker::newerRequestWaiting() const {
   std::lock_guard lock(mutex_);
-  newFrame_ = frame;
+  return stop_ || pending_.has_value();
+}
+
+void RenderWorker::refine(const Job& job, const FrameSnapshot& first, const Image& firstImage) {
+  const Rect frameRect{0, 0, first.request.width, first.request.height};
+  ImageAverage average(frameRect);
+  average.add(firstImage);
+  for (int pass = 1; pass < job.passes && !newerRequestWaiting(); ++pass) {
+    FrameRequest request = first.request;
+    request.recordPhases = false;
+    request.settings.phaseShift = latticePassShift(pass);
+    average.add(cluster_->renderFrame(request).image);
+    auto refined = std::make_shared<FrameSnapshot>(first);  // the first pass's stats and stages
+    refined->image = toPixels(average.mean(), frameRect, std::max(frameRect.w, frameRect.h));
+    refined->passes = pass + 1;
+    refined->seconds = nowSeconds() - job.submitted;
+    std::lock_guard lock(mutex_);
+    newFrame_ = refined;
+  }
 }
 
 }  // namespace kdswap

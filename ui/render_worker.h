@@ -53,6 +53,9 @@ struct SceneSnapshot {
 struct FrameSnapshot {
   std::uint64_t id = 0;  //!< the submit() number it answers
   bool preview = false;  //!< a quick frame rendered while the view moves
+  //! Refinement: `image` is the mean of the first `passes` of `passesRequested` passes on shifted
+  //! sampling lattices (RenderSettings::phaseShift); stats, stages and phases are the first's.
+  int passes = 1, passesRequested = 1;
   FrameRequest request;
   std::shared_ptr<const SceneSnapshot> scene;
   FrameStats stats;
@@ -70,7 +73,10 @@ class RenderWorker {
   RenderWorker& operator=(const RenderWorker&) = delete;
 
   //! Queues a frame; a request still pending is dropped (only the newest matters). Returns its id.
-  std::uint64_t submit(const SceneSpec& scene, const FrameRequest& request, bool preview);
+  //! A full frame with `passes` > 1 is refined: once it is published, the worker renders passes
+  //! 2..`passes` on shifted lattices and publishes their running mean after each (same id), until
+  //! the passes are done or a newer request arrives. busy() holds until then.
+  std::uint64_t submit(const SceneSpec& scene, const FrameRequest& request, bool preview, int passes = 1);
   //! The newest scene built since the last call, or null.
   std::shared_ptr<const SceneSnapshot> takeScene();
   //! The newest finished frame since the last call, or null.
@@ -88,10 +94,14 @@ class RenderWorker {
     SceneSpec scene;
     FrameRequest request;
     bool preview;
+    int passes;
     double submitted;
   };
   void run();
   void process(const Job& job);
+  //! Passes 2.. of a full frame whose first pass gave `first` (image `firstImage`).
+  void refine(const Job& job, const FrameSnapshot& first, const Image& firstImage);
+  bool newerRequestWaiting() const;
   bool ensureScene(const SceneSpec& spec);
 
   mutable std::mutex mutex_;          //!< guards everything below up to worker_

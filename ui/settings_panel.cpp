@@ -265,6 +265,12 @@ void drawRenderSection(GuiState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("front-to-back waves (beyond the paper): nodes render nearest first and stop where the light in "
                       "front is spent, so none samples behind the single-node ray's end (one brick per node)");
+  ImGui::SliderInt(field("refine passes").c_str(), &state.refinePasses, 1, kMaxRefinePasses, "%d",
+                   ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("once the view rests, the frame is refined to the mean of this many passes on shifted sampling "
+                      "lattices (kdswap render --passes): grain and rings average out; 1: off");
+  if (ImGui::IsItemDeactivatedAfterEdit()) state.requestFrame(false);
   int projection = r.view.projection == Projection::Perspective ? 0 : 1;
   if (ImGui::Combo(field("projection").c_str(), &projection, "perspective\0orthographic\0")) {
     r.view.projection = projection == 0 ? Projection::Perspective : Projection::Orthographic;

@@ -36,6 +36,10 @@ void drawStatusLine(GuiState& state) {
   ImGui::SameLine();
   if (state.building) {
     ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "building the scene...");
+  } else if (state.rendering && state.frame && !state.frame->preview && state.frame->id == state.lastSubmitted &&
+             state.frame->passes < state.frame->passesRequested) {
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "refining: %d of %d passes", state.frame->passes,
+                       state.frame->passesRequested);
   } else if (state.rendering) {
     ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "rendering...");
   } else if (state.frame) {
@@ -44,9 +48,10 @@ void drawStatusLine(GuiState& state) {
     const FrameSnapshot& f = *state.frame;
     // Times first: a narrow panel cuts the scene description (the Settings panel has it) first.
     char text[256];
-    std::snprintf(text, sizeof text, "%s%.0f ms wall (request to frame %.0f ms), %dx%d, %s, %s",
-                  f.preview ? "preview " : "", f.stats.wallSeconds * 1e3, f.seconds * 1e3, f.request.width,
-                  f.request.height, counted(f.stats.nodes, "node").c_str(), f.stats.strategy.c_str());
+    const std::string passes = f.passes > 1 ? "mean of " + std::to_string(f.passes) + " passes, " : "";
+    std::snprintf(text, sizeof text, "%s%.0f ms wall (request to frame %.0f ms), %s%dx%d, %s, %s",
+                  f.preview ? "preview " : "", f.stats.wallSeconds * 1e3, f.seconds * 1e3, passes.c_str(),
+                  f.request.width, f.request.height, counted(f.stats.nodes, "node").c_str(), f.stats.strategy.c_str());
     const std::string full = text, shown = fitText(full, ImGui::GetContentRegionAvail().x);
     ImGui::TextDisabled("%s", shown.c_str());
     if (ImGui::IsItemHovered()) {
@@ -55,7 +60,9 @@ void drawStatusLine(GuiState& state) {
       ImGui::TextUnformatted(full.c_str());
       ImGui::TextDisabled("wall: the frame as the cluster timed it, host to host (Timing > Table). Request to "
                           "frame: from asking for it to the finished frame, including any scene build and "
-                          "waiting for an earlier frame.");
+                          "waiting for an earlier frame (and, once refined, the passes so far). Passes: the "
+                          "picture is the mean of frames on shifted sampling lattices (refine passes, under "
+                          "Rendering); the times and stages are the first pass's.");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }

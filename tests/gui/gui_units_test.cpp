@@ -1,6 +1,7 @@
 // The GUI's logic that needs no window: the histogram under the transfer-function editor, the
 // speedup sweep's warm-up and medians, error text safe to print, the data-set error messages, the
-// data panel's raw-layout fields, and the timeline's bars, rows and ticks.
+// data panel's raw-layout fields, the timeline's bars, rows and ticks, and the render worker's
+// refinement of a still frame.
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
@@ -189,6 +190,60 @@ TEST_CASE("gui speedup sweep: a warm-up frame, then the median of several frames
   }
 }
 
+namespace {
+
+//! Polls `worker` until it is idle (at most 60 s) and returns the last frame it published.
+std::shared_ptr<const FrameSnapshot> lastFrameWhenIdle(RenderWorker& worker) {
+  std::shared_ptr<const FrameSnapshot> last;
+  for (int i = 0; i < 6000; ++i) {
+    if (auto f = worker.takeFrame()) last = f;
+    if (!worker.busy()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (auto f = worker.takeFrame()) last = f;
+  return last;
+}
+
+}  // namespace
+
+TEST_CASE("gui refinement: a still frame becomes the mean of its passes, and a newer request cuts it short") {
+  SceneSpec scene;
+  scene.data = "phantom:32";
+  scene.cluster.nodes = 4;
+  FrameRequest request;
+  request.width = request.height = 64;
+  request.transfer = loadTransferFunction("phantom");
+  RenderWorker worker;
+  const std::uint64_t single = worker.submit(scene, request, false, 1);
+  const std::shared_ptr<const FrameSnapshot> one = lastFrameWhenIdle(worker);
+  REQUIRE(one);
+  CHECK(one->id == single);
+  CHECK(one->passes == 1);
+
+  const std::uint64_t refined = worker.submit(scene, request, false, 6);
+  const std::shared_ptr<const FrameSnapshot> six = lastFrameWhenIdle(worker);
+  REQUIRE(six);
+  CHECK(six->id == refined);
+  CHECK(six->passes == 6);
+  CHECK(six->passesRequested == 6);
+  CHECK(six->stats.nodes == 4);  // the first pass's stats and stages come along
+  CHECK_FALSE(six->stages.pixels.empty());
+  // The same view, so nearly the same picture, but the mean of six lattices is not the first's.
+  REQUIRE(six->image.rgba.size() == one->image.rgba.size());
+  long differing = 0;
+  for (std::size_t i = 0; i < one->image.rgba.size(); ++i) differing += one->image.rgba[i] != six->image.rgba[i];
+  CHECK(differing > 0);
+
+  // A preview submitted while a long refinement runs ends it after the pass in flight.
+  worker.submit(scene, request, false, 64);
+  for (int i = 0; i < 6000 && !worker.takeFrame(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const std::uint64_t preview = worker.submit(scene, request, true, 64);
+  const std::shared_ptr<const FrameSnapshot> last = lastFrameWhenIdle(worker);
+  REQUIRE(last);
+  CHECK(last->id == preview);
+  CHECK(last->preview);
+  CHECK(last->passes == 1);  // previews are never refined
+}
 
 namespace {
 
