@@ -95,8 +95,9 @@ void run(const RenderOptions& o) {
   FrameResult frame;
   ImageAverage average(Rect{0, 0, scene.request.width, scene.request.height});
   double passesWall = 0.0;
-  std::optional<ProgressMeter> progressOfPasses;  // "frames done" of the passes, when there are several
-  if (o.passes > 1 && !o.quiet) progressOfPasses.emplace(stderr, ::isatty(fileno(stderr)), o.passes, 0);
+  // Passes done, on a terminal (as a long frame's progress: not in logs, not with --quiet).
+  std::optional<ProgressMeter> progressOfPasses;
+  if (o.passes > 1 && !o.quiet && ::isatty(fileno(stderr))) progressOfPasses.emplace(stderr, true, o.passes, 0, "pass", "passes");
   for (int pass = 0; pass < o.passes; ++pass) {
     FrameRequest request = scene.request;
     request.settings.phaseShift = latticePassShift(pass);

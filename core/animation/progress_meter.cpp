@@ -17,8 +17,9 @@ std::string formatDuration(double seconds) {
 
 }  // namespace
 
-ProgressMeter::ProgressMeter(std::FILE* out, bool terminal, int total, int alreadyDone)
-    : out_(out), terminal_(terminal), total_(total), done_(alreadyDone) {}
+ProgressMeter::ProgressMeter(std::FILE* out, bool terminal, int total, int alreadyDone, const char* unit,
+                             const char* units)
+    : out_(out), unit_(unit), units_(units), terminal_(terminal), total_(total), done_(alreadyDone) {}
 
 void ProgressMeter::frameDone() {
   ++done_;
@@ -43,7 +44,7 @@ void ProgressMeter::print() {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double fps = elapsed > 0 ? renderedThisRun_ / elapsed : 0.0;
   const std::string left = fps > 0 ? formatDuration((total_ - done_) / fps) : "?";
-  std::fprintf(out_, "%sframe %d/%d  %.2f frames/s  %s left%s", terminal_ ? "\r" : "", done_, total_, fps,
+  std::fprintf(out_, "%s%s %d/%d  %.2f %s/s  %s left%s", terminal_ ? "\r" : "", unit_, done_, total_, fps, units_,
                left.c_str(), terminal_ ? "\033[K" : "\n");
   std::fflush(out_);
 }

@@ -10,7 +10,9 @@ namespace kdswap {
 class ProgressMeter {
  public:
   //! `alreadyDone` frames (kept from an earlier run) count as done but not in the frame rate.
-  ProgressMeter(std::FILE* out, bool terminal, int total, int alreadyDone);
+  //! `unit` and `units` name what is counted ("pass", "passes" for kdswap render --passes).
+  ProgressMeter(std::FILE* out, bool terminal, int total, int alreadyDone, const char* unit = "frame",
+                const char* units = "frames");
   //! One more frame finished.
   void frameDone();
   //! Ends the updating line on a terminal so later output starts on a fresh line.
@@ -19,6 +21,8 @@ class ProgressMeter {
  private:
   void print();
   std::FILE* out_;
+  const char* unit_;
+  const char* units_;
   bool terminal_;
   int total_, done_, renderedThisRun_ = 0;
   int lastDecile_ = -1;
