@@ -16,6 +16,7 @@
 #include "core/animation/camera_path.h"
 #include "core/animation/progress_meter.h"
 #include "core/animation/sequence_writer.h"
+#include "core/cluster/lattice_passes.h"
 #include "core/cluster/phase_grid.h"
 #include "core/image/image_io.h"
 #include "core/transfer/presets.h"
@@ -33,6 +34,7 @@ struct AnimateOptions {
   std::string outDir = "animation", format = "png", stats;
   bool phases = false, resume = false, noVideo = false;
   float fps = 24.0f;
+  int passes = 1;     //!< each frame the mean of this many passes on shifted lattices
   int stopAfter = 0;  //!< test hook: behave as if Ctrl-C came after this many rendered frames
 };
 
@@ -127,13 +129,16 @@ CameraPath buildPath(const AnimateOptions& o, const std::vector<CameraKey>& keys
 //! What decides a frame's pixels; a resumed run keeps a frame only if all of this is unchanged.
 nlohmann::json frameIdentity(const AnimateOptions& o, const PathFrame& f) {
   const SceneOptions& s = o.scene;
-  return {{"view", {{"azimuth", f.view.azimuthDeg}, {"elevation", f.view.elevationDeg}, {"distance", f.view.distance}}},
+  nlohmann::json identity = {{"view", {{"azimuth", f.view.azimuthDeg}, {"elevation", f.view.elevationDeg}, {"distance", f.view.distance}}},
           {"tf", !f.tf.empty() ? f.tf : (!s.tf.empty() ? s.tf : "default")},
           {"render",
            {{"volume", !s.volume.empty() ? s.volume : (!s.dataset.empty() ? s.dataset : std::string(kDefaultDataset))},
             {"size", s.size}, {"fov", s.fov}, {"projection", s.projection}, {"up", s.up}, {"step", s.step},
             {"shading", s.shading}, {"jitter", s.jitter}, {"ert", s.ert}, {"range", s.range},
             {"nodes", s.nodes}, {"partition", s.partition}, {"composite", s.composite}, {"sparse", s.sparse}}}};
+  // Only when used, so frames recorded before the option existed keep their identity.
+  if (o.passes > 1) identity["render"]["passes"] = o.passes;
+  return identity;
 }
 
 void printSummary(const SequenceWriter& writer, const VirtualCluster& cluster, const AnimateOptions& o) {
@@ -183,7 +188,7 @@ void run(const AnimateOptions& o) {
     const PathFrame& f = path.frame(i);
     scene.request.view = f.view;
     scene.request.transfer = f.tf.empty() ? baseTransfer : transfers.at(f.tf);
-    const FrameResult frame = cluster.renderFrame(scene.request);
+    const FrameResult frame = renderPasses(cluster, scene.request, o.passes).frame;
     writeImage(writer.framePath(i), frame.image);
     if (frame.phases) writeImage(writer.phasesPath(i), drawPhaseGrid(*frame.phases, frame.image));
     nlohmann::json line = frame.stats.toJson();
@@ -250,6 +255,11 @@ void addAnimateCommand(CLI::App& app) {
   cmd->add_option("--format", options->format, "Frame format: png (8-bit over black) or exr (float RGBA)")
       ->capture_default_str();
   cmd->add_option("--stats", options->stats, "Per-frame stats as JSON lines (default DIR/stats.jsonl)")->check(nonEmpty());
+  cmd->add_option("--passes", options->passes,
+                  "Each frame the mean of N passes on shifted sampling lattices (1..256; grain and rings average "
+                  "out, N times the time; stats and stages: the first pass)")
+      ->check(CLI::Range(1, kMaxLatticePasses))
+      ->capture_default_str();
   cmd->add_flag("--phases", options->phases, "Also write each frame's compositing stages (Figure 6) as DIR/phases_NNNN.png");
   cmd->add_flag("--resume", options->resume, "Continue a stopped sequence: keep frames already written and recorded");
   cmd->add_option("--fps", options->fps, "Frame rate of the MP4, in (0, 240]")->capture_default_str();

@@ -13,6 +13,7 @@
 #include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/animation/progress_meter.h"
+#include "core/cluster/lattice_passes.h"
 #include "core/cluster/phase_grid.h"
 #include "core/image/image_average.h"
 #include "core/image/image_io.h"
@@ -36,7 +37,6 @@ struct RenderOptions {
   bool quiet = false;
 };
 
-constexpr int kMaxPasses = 256;
 
 constexpr float kVerifyTolerance = 1e-5f;
 
@@ -92,28 +92,22 @@ void run(const RenderOptions& o) {
   if (scene.fault.armed()) cluster.injectFault(scene.fault);
   // Pass i samples the lattice shifted by latticePassShift(i); the image is the passes' mean. The
   // table, stats and stages are the first pass's (an ordinary frame).
-  FrameResult frame;
-  ImageAverage average(Rect{0, 0, scene.request.width, scene.request.height});
-  double passesWall = 0.0;
-  // Passes done, on a terminal (as a long frame's progress: not in logs, not with --quiet).
-  std::optional<ProgressMeter> progressOfPasses;
-  if (o.passes > 1 && !o.quiet && ::isatty(fileno(stderr))) progressOfPasses.emplace(stderr, true, o.passes, 0, "pass", "passes");
-  for (int pass = 0; pass < o.passes; ++pass) {
-    FrameRequest request = scene.request;
-    request.settings.phaseShift = latticePassShift(pass);
-    request.recordPhases = scene.request.recordPhases && pass == 0;
-    FrameResult result;
-    {
-      const FrameProgress progress(cluster, !o.quiet);
-      result = cluster.renderFrame(request);
-    }
-    average.add(result.image);
-    passesWall += result.stats.wallSeconds;
-    if (pass == 0) frame = std::move(result);
-    if (progressOfPasses) progressOfPasses->frameDone();
+  PassesResult passes;
+  if (o.passes == 1) {
+    const FrameProgress progress(cluster, !o.quiet);
+    passes = renderPasses(cluster, scene.request, 1);
+  } else {
+    // Passes done, on a terminal (as a long frame's progress: not in logs, not with --quiet).
+    std::optional<ProgressMeter> meter;
+    if (!o.quiet && ::isatty(fileno(stderr))) meter.emplace(stderr, true, o.passes, 0, "pass", "passes");
+    passes = renderPasses(cluster, scene.request, o.passes, [&] {
+      if (meter) meter->frameDone();
+    });
+    if (meter) meter->finish();
   }
-  if (progressOfPasses) progressOfPasses->finish();
-  const Image image = o.passes > 1 ? average.mean() : frame.image;
+  const FrameResult& frame = passes.frame;
+  const Image& image = frame.image;
+  const double passesWall = passes.wallSeconds;
   writeImage(o.out, image, writeOptions);
   if (!o.quiet) std::printf("%s", formatFrameTable(frame.stats).c_str());
   if (!o.quiet && o.passes > 1)
@@ -138,7 +132,7 @@ void run(const RenderOptions& o) {
   if (o.verify) {
     // The single-node reference of every pass, averaged as the passes are.
     const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
-    ImageAverage reference(average.frame());
+    ImageAverage reference(Rect{0, 0, scene.request.width, scene.request.height});
     for (int pass = 0; pass < o.passes; ++pass) {
       RenderSettings settings = scene.request.settings;
       settings.phaseShift = latticePassShift(pass);
@@ -191,7 +185,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--passes", options->passes,
                   "Average N frames whose sampling lattices are shifted (R1 sequence) against rings and grain: "
                   "a still image's quality for N times the time")
-      ->check(CLI::Range(1, kMaxPasses))
+      ->check(CLI::Range(1, kMaxLatticePasses))
       ->capture_default_str();
   cmd->add_flag("--verify", options->verify,
                 "Also render the single-node reference; exit 1 if they differ by more than 1e-5 (plus the "
