@@ -16,7 +16,8 @@ class BlueNoiseTile {
   static constexpr int kSide = 64;  //!< a power of two: pixels wrap with a mask
   static constexpr int kCells = kSide * kSide;
 
-  //! The tile, built on first use (deterministic: the same on every node and every run).
+  //! The tile, built on first use (deterministic: the same on every node, run and machine, as it
+  //! uses IEEE basic operations only).
   static const BlueNoiseTile& instance();
 
   //! The value of pixel (px, py) of an image tiled with this tile, in (0, 1).
