@@ -37,7 +37,6 @@ struct RenderOptions {
   bool quiet = false;
 };
 
-
 constexpr float kVerifyTolerance = 1e-5f;
 
 ImageWriteOptions parseBackground(const std::string& text) {
@@ -100,8 +99,9 @@ void run(const RenderOptions& o) {
     // Passes done, on a terminal (as a long frame's progress: not in logs, not with --quiet).
     std::optional<ProgressMeter> meter;
     if (!o.quiet && ::isatty(fileno(stderr))) meter.emplace(stderr, true, o.passes, 0, "pass", "passes");
-    passes = renderPasses(cluster, scene.request, o.passes, [&] {
+    passes = renderPasses(cluster, scene.request, o.passes, [&](int, const FrameResult&, const ImageAverage&) {
       if (meter) meter->frameDone();
+      return true;
     });
     if (meter) meter->finish();
   }

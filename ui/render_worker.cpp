@@ -13,8 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/image/image_average.h"
-#include "core/render/voxel_ray.h"
+#include "core/cluster/lattice_passes.h"
 #include "core/util/clock.h"
 #include "core/util/error.h"
 #include "core/volume/datasets/dataset.h"
@@ -192,48 +191,36 @@ void RenderWorker::process(const Job& job) {
   if (!ensureScene(job.scene)) return;
   FrameRequest request = job.request;
   request.recordPhases = !job.preview;
-  FrameResult result = cluster_->renderFrame(request);
-  auto frame = std::make_shared<FrameSnapshot>();
-  frame->id = job.id;
-  frame->preview = job.preview;
-  frame->request = request;
-  frame->scene = scene_;
-  frame->stats = result.stats;
-  frame->image = toPixels(result.image, Rect{0, 0, request.width, request.height}, std::max(request.width, request.height));
-  if (result.phases) {
-    frame->stages = buildStageAtlas(*result.phases, kStageCellSide);
-    frame->phases = result.phases;
-  }
-  frame->passesRequested = job.passes;
-  frame->seconds = nowSeconds() - job.submitted;
-  {
+  // Pass 1 is the frame; a refined job's later passes publish the running mean with pass 1's
+  // stats and stages, until they are done or a newer request waits.
+  const Rect frameRect{0, 0, request.width, request.height};
+  std::shared_ptr<const FrameSnapshot> first;
+  renderPasses(*cluster_, request, job.passes, [&](int pass, const FrameResult& result, const ImageAverage& mean) {
+    std::shared_ptr<FrameSnapshot> frame;
+    if (pass == 0) {
+      frame = std::make_shared<FrameSnapshot>();
+      frame->id = job.id;
+      frame->preview = job.preview;
+      frame->request = request;
+      frame->scene = scene_;
+      frame->stats = result.stats;
+      frame->image = toPixels(result.image, frameRect, std::max(request.width, request.height));
+      if (result.phases) {
+        frame->stages = buildStageAtlas(*result.phases, kStageCellSide);
+        frame->phases = result.phases;
+      }
+      frame->passesRequested = job.passes;
+      first = frame;
+    } else {
+      frame = std::make_shared<FrameSnapshot>(*first);
+      frame->image = toPixels(mean.mean(), frameRect, std::max(request.width, request.height));
+      frame->passes = pass + 1;
+    }
+    frame->seconds = nowSeconds() - job.submitted;
     std::lock_guard lock(mutex_);
     newFrame_ = frame;
-  }
-  if (job.passes > 1) refine(job, *frame, result.image);
-}
-
-bool RenderWorker::newerRequestWaiting() const {
-  std::lock_guard lock(mutex_);
-  return stop_ || pending_.has_value();
-}
-
-void RenderWorker::refine(const Job& job, const FrameSnapshot& first, const Image& firstImage) {
-  const Rect frameRect{0, 0, first.request.width, first.request.height};
-  ImageAverage average(frameRect);
-  average.add(firstImage);
-  for (int pass = 1; pass < job.passes && !newerRequestWaiting(); ++pass) {
-    FrameRequest request = first.request;
-    request.recordPhases = false;
-    request.settings.phaseShift = latticePassShift(pass);
-    average.add(cluster_->renderFrame(request).image);
-    auto refined = std::make_shared<FrameSnapshot>(first);  // the first pass's stats and stages
-    refined->image = toPixels(average.mean(), frameRect, std::max(frameRect.w, frameRect.h));
-    refined->passes = pass + 1;
-    refined->seconds = nowSeconds() - job.submitted;
-    std::lock_guard lock(mutex_);
-    newFrame_ = refined;
-  }
+    return !stop_ && !pending_.has_value();  // a newer request ends the refinement
+  });
 }
 
 }  // namespace kdswap

@@ -99,9 +99,6 @@ class RenderWorker {
   };
   void run();
   void process(const Job& job);
-  //! Passes 2.. of a full frame whose first pass gave `first` (image `firstImage`).
-  void refine(const Job& job, const FrameSnapshot& first, const Image& firstImage);
-  bool newerRequestWaiting() const;
   bool ensureScene(const SceneSpec& spec);
 
   mutable std::mutex mutex_;          //!< guards everything below up to worker_

@@ -3,7 +3,7 @@
 // chosen cell of highest energy, "largest void" the free cell of lowest.
 #include "core/camera/blue_noise.h"
 
-#include <cmath>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
