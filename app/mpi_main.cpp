@@ -19,10 +19,13 @@
 #include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/bench/statistics.h"
+#include "core/cluster/lattice_passes.h"
 #include "core/cluster/mpi_cluster.h"
 #include "core/comm/mpi_agreement.h"
+#include "core/image/image_average.h"
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
+#include "core/render/voxel_ray.h"
 #include "core/util/error.h"
 #include "core/util/file_writer.h"
 #include "core/util/memory.h"
@@ -42,6 +45,7 @@ struct MpiRenderOptions {
   int frames = 1;          //!< measured frames; above 1, after one warm-up frame
   float orbitDeg = 1.0f;   //!< the view's turn per frame (azimuth), with frames > 1
   bool orbitGiven = false;
+  int passes = 1;          //!< each frame the mean of this many passes on shifted lattices
 };
 
 //! Rank 0: the measured frames' figures, one per frame, and their medians ("frames" in the stats).
@@ -88,20 +92,26 @@ void checkRankOptions(MpiRenderOptions& o, int ranks, bool nodesGiven) {
     throw Error(std::string("--orbit ") + value + ": expected degrees from -360 to 360");
   }
   if (o.orbitGiven && o.frames < 2) throw Error("--orbit turns the view between frames: give --frames 2 or more");
+  if (o.passes < 1 || o.passes > kMaxLatticePasses)
+    throw Error("--passes " + std::to_string(o.passes) + ": expected 1 to " + std::to_string(kMaxLatticePasses));
   o.scene.nodes = ranks * o.nodesPerRank;
 }
 
 //! Rank 0, after a successful frame: image, table, optional verification and stats. Returns the
 //! exit code (1: verification failed).
 int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOutcome& outcome,
-                 const std::vector<FrameStats>& measured) {
+                 const std::vector<FrameStats>& measured, double passesWall) {
   const FrameResult& frame = outcome.result;
   writeImage(o.out, frame.image);
   nlohmann::json stats = outcome.statsJson();
   if (measured.size() > 1) stats["frames"] = framesJson(measured, o.orbitDeg);
+  if (o.passes > 1) stats["passes"] = {{"count", o.passes}, {"wall_s", passesWall}};
   if (!o.quiet) {
     std::printf("%s  over %d MPI rank(s) x %d node(s) per rank\n", formatFrameTable(frame.stats).c_str(),
                 outcome.ranks, outcome.nodesPerRank);
+    if (o.passes > 1)
+      std::printf("  %d passes averaged, lattice shifted by the R1 sequence; wall %.2f s in all (the table: pass 1)\n",
+                  o.passes, passesWall);
     if (measured.size() > 1) {
       const nlohmann::json& m = stats["frames"]["median"];
       std::printf("medians of %zu frames after a warm-up (view turning %g deg a frame; the table is the last "
@@ -114,12 +124,12 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
   }
   bool verified = true;
   if (o.verify) {
-    // The reference reads the whole volume, on rank 0 only.
+    // The reference reads the whole volume, on rank 0 only; with passes, the mean of the same passes.
     const FrameRequest& r = scene.request;
     const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
-    const ReferenceResult ref = renderReference(whole, r.view, r.width, r.height, r.transfer, r.settings,
-                                                resolveValueRange(r.settings, scene.source->info()));
-    const float diff = maxAbsDifference(frame.image, ref.image, frame.image.rect());
+    const Image reference =
+        referencePasses(whole, r, resolveValueRange(r.settings, scene.source->info()), o.passes);
+    const float diff = maxAbsDifference(frame.image, reference, frame.image.rect());
     const float ert = r.settings.earlyTermination;
     const float tolerance = ert < 1.0f ? kVerifyTolerance + (1.0f - ert) : kVerifyTolerance;
     verified = diff <= tolerance;
@@ -155,44 +165,58 @@ int run(MpiRenderOptions& o, const MpiSession& session, bool nodesGiven) {
   const std::unique_ptr<MpiRankFrame> frame = prepareRankFrame(*scene.source, scene.request, scene.cluster, o.nodesPerRank);
 
   // With --frames N > 1: a warm-up frame (caches, first-touch pages, pooled buffers), then N
-  // measured ones, the first at the requested view, each turned --orbit degrees further. The bricks
-  // stay loaded; each frame runs over its own network.
+  // measured ones, the first at the requested view, each turned --orbit degrees further. With
+  // --passes N each frame is the mean of N passes, pass i on the lattice shifted by
+  // latticePassShift(i), as kdswap render's; a frame's figures are its first pass's. The bricks
+  // stay loaded; each pass runs over its own network.
   const int total = o.frames > 1 ? o.frames + 1 : 1;
   const View firstView = scene.request.view;
   std::vector<FrameStats> measured;
-  MpiFrameOutcome outcome;
+  MpiFrameOutcome outcome;  // rank 0: the last frame's first pass, its image the passes' mean
+  double passesWall = 0;    // the last frame's passes
   int code = 0;
   for (int f = 0; f < total && code == 0; ++f) {
     View view = firstView;
     view.azimuthDeg += o.orbitDeg * float(std::max(f - 1, 0));
-    if (f > 0) {
-      std::string viewProblem;  // agreed, as every problem between frames, so no rank waits alone
-      try {
-        frame->setView(view);
-      } catch (const std::exception& e) {
-        viewProblem = e.what();
+    ImageAverage mean(o.passes > 1 && rank == 0 ? Rect{0, 0, scene.request.width, scene.request.height} : Rect{});
+    passesWall = 0;
+    for (int pass = 0; pass < o.passes && code == 0; ++pass) {
+      if (f > 0 || pass > 0) {
+        std::string viewProblem;  // agreed, as every problem between frames, so no rank waits alone
+        try {
+          frame->setView(view, latticePassShift(pass));
+        } catch (const std::exception& e) {
+          viewProblem = e.what();
+        }
+        const std::string agreed = firstProblemOfAnyRank(viewProblem);
+        if (!agreed.empty()) throw Error(agreed);
       }
-      const std::string agreed = firstProblemOfAnyRank(viewProblem);
-      if (!agreed.empty()) throw Error(agreed);
+      MpiNetwork network(o.nodesPerRank, o.stallSeconds);
+      MpiFrameOutcome passOutcome = renderFrameOverMpi(network, *frame);
+      // Rank 0 decides: a failure anywhere reaches the host, which names it.
+      int ok = passOutcome.ok ? 1 : 0;
+      MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+      if (!ok) {
+        if (rank == 0) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(passOutcome.error).c_str());
+        code = 2;
+      } else if (rank == 0) {
+        passesWall += passOutcome.result.stats.wallSeconds;
+        if (o.passes > 1) mean.add(passOutcome.result.image);
+        if (pass == 0) outcome = std::move(passOutcome);
+      }
     }
-    MpiNetwork network(o.nodesPerRank, o.stallSeconds);
-    outcome = renderFrameOverMpi(network, *frame);
-    // Rank 0 decides: a failure anywhere reaches the host, which names it.
-    int ok = outcome.ok ? 1 : 0;
-    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    if (!ok) {
-      if (rank == 0) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(outcome.error).c_str());
-      code = 2;
-    } else if (rank == 0 && (total == 1 || f > 0)) {
+    if (code != 0 || rank != 0) continue;
+    if (o.passes > 1) outcome.result.image = mean.mean();
+    if (total == 1 || f > 0) {
       measured.push_back(outcome.result.stats);
       if (total > 1 && !o.quiet)
         std::printf("frame %d/%d: wall %.2f ms\n", f, total - 1, outcome.result.stats.wallSeconds * 1e3);
     }
-    scene.request.view = view;  // --verify checks the last frame
   }
+  scene.request.view = frame->request.view;  // --verify checks the last frame
   if (code == 0 && rank == 0) {
     try {
-      code = writeResults(o, scene, outcome, measured);
+      code = writeResults(o, scene, outcome, measured, passesWall);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(e.what()).c_str());
       code = 2;
@@ -244,6 +268,10 @@ int main(int argc, char** argv) {
                   "degrees a frame; prints and writes (--stats \"frames\") their medians; the image is the last")
       ->capture_default_str();
   cmd->add_option("--orbit", o.orbitDeg, "With --frames: degrees the view turns per frame (azimuth), -360..360")
+      ->capture_default_str();
+  cmd->add_option("--passes", o.passes,
+                  "Each frame the mean of N passes on shifted sampling lattices (1..256), as kdswap render "
+                  "--passes: N frames' time for a picture without the sampling's grain")
       ->capture_default_str();
   cmd->add_option("--out,-o", o.out, "Output image, by extension: .png, .exr, .tif, .tiff or .jpg, written by rank 0")
       ->capture_default_str();

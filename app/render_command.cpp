@@ -18,7 +18,6 @@
 #include "core/image/image_average.h"
 #include "core/image/image_io.h"
 #include "core/render/reference_render.h"
-#include "core/render/voxel_ray.h"
 #include "core/util/error.h"
 #include "core/util/file_writer.h"
 
@@ -132,16 +131,9 @@ void run(const RenderOptions& o) {
   if (o.verify) {
     // The single-node reference of every pass, averaged as the passes are.
     const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
-    ImageAverage reference(Rect{0, 0, scene.request.width, scene.request.height});
-    for (int pass = 0; pass < o.passes; ++pass) {
-      RenderSettings settings = scene.request.settings;
-      settings.phaseShift = latticePassShift(pass);
-      reference.add(renderReference(whole, scene.request.view, scene.request.width, scene.request.height,
-                                    scene.request.transfer, settings,
-                                    resolveValueRange(settings, scene.source->info()))
-                        .image);
-    }
-    const float diff = maxAbsDifference(image, reference.mean(), image.rect());
+    const Image reference = referencePasses(whole, scene.request,
+                                            resolveValueRange(scene.request.settings, scene.source->info()), o.passes);
+    const float diff = maxAbsDifference(image, reference, image.rect());
     // Early ray termination is local to each brick, so below a threshold of 1 a distributed ray
     // may keep up to (1 - threshold) more light than the whole ray: that is the bound then.
     const float ert = scene.request.settings.earlyTermination;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/render/reference_render.h"
 #include "core/render/voxel_ray.h"
 
 namespace kdswap {
@@ -28,6 +29,21 @@ PassesResult renderPasses(VirtualCluster& cluster, const FrameRequest& request, 
   }
   if (asked > 1) out.frame.image = average.mean();
   return out;
+}
+
+Image referencePasses(const Brick& whole, const FrameRequest& request, glm::vec2 valueRange, int passes) {
+  const int asked = std::max(1, passes);
+  ImageAverage average(Rect{0, 0, request.width, request.height});
+  for (int pass = 0; pass < asked; ++pass) {
+    RenderSettings settings = request.settings;
+    settings.phaseShift = latticePassShift(pass);
+    Image image = renderReference(whole, request.view, request.width, request.height, request.transfer, settings,
+                                  valueRange)
+                      .image;
+    if (asked == 1) return image;
+    average.add(image);
+  }
+  return average.mean();
 }
 
 }  // namespace kdswap

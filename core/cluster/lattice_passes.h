@@ -10,6 +10,7 @@
 #include "core/cluster/frame_request.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/image/image_average.h"
+#include "core/volume/brick.h"
 
 namespace kdswap {
 
@@ -32,5 +33,9 @@ using PassObserver = std::function<bool(int pass, const FrameResult& result, con
 //! `afterPass` if set. Throws what renderFrame throws.
 PassesResult renderPasses(VirtualCluster& cluster, const FrameRequest& request, int passes,
                           const PassObserver& afterPass = {});
+
+//! The single-node reference of the same passes (renderReference over `whole`, the whole volume
+//! as one brick), averaged alike: what --verify compares a mean of passes with.
+Image referencePasses(const Brick& whole, const FrameRequest& request, glm::vec2 valueRange, int passes);
 
 }  // namespace kdswap

@@ -280,9 +280,10 @@ MpiRankFrame::MpiRankFrame(const VolumeSource& source, const FrameRequest& reque
   }
 }
 
-void MpiRankFrame::setView(const View& view) {
+void MpiRankFrame::setView(const View& view, float phaseShift) {
   const VolumeInfo& info = source.info();
   request.view = view;
+  request.settings.phaseShift = phaseShift;
   plan.emplace(request, tree, info.spacing, resolveValueRange(request.settings, info), *strategy);
   occlusionMap.reset();
   mapSeconds = 0;
@@ -346,7 +347,7 @@ std::unique_ptr<MpiRankFrame> prepareRankFrame(const VolumeSource& source, const
     });
     if (!frame->occlusionGrid->active()) frame->occlusionGrid.reset();
   }
-  frame->setView(request.view);
+  frame->setView(request.view, request.settings.phaseShift);
   return frame;
 }
 

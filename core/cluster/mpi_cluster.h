@@ -50,11 +50,13 @@ struct MpiRankFrame {
 
   //! Local, the same on every rank: the next frame looks from `view` (a new plan, and with culling
   //! a new occlusion map, timed in mapSeconds, unless culling rests: CullingRest, whose counts
-  //! renderFrameOverMpi sums over the ranks, as the virtual cluster decides it). Once per frame.
-  void setView(const View& view);
+  //! renderFrameOverMpi sums over the ranks, as the virtual cluster decides it), its lattice
+  //! shifted by `phaseShift` (RenderSettings::phaseShift: pass i of --passes gives
+  //! latticePassShift(i)). Once per frame.
+  void setView(const View& view, float phaseShift);
 
   const VolumeSource& source;
-  FrameRequest request;             //!< the current frame's (its view changes with setView)
+  FrameRequest request;             //!< the current frame's (view and phase shift change with setView)
   const ClusterOptions& options;
   int nodesPerRank;
   NodeArena arena;
