@@ -17,6 +17,7 @@
 #include "app/scene_options.h"
 #include "core/bench/bench_grid.h"
 #include "core/bench/bench_report.h"
+#include "core/bench/machine_info.h"
 #include "core/bench/micro_bench.h"
 #include "core/bench/paper_comparison.h"
 #include "core/bench/quantised_source.h"
@@ -121,7 +122,7 @@ std::string commandLine(const BenchOptions& o) {
          " --network " + o.network + " --voxels " + o.voxels + " --out-dir " + o.outDir;
 }
 
-void runGrid(const BenchOptions& o) {
+void runGrid(const BenchOptions& o, const MachineInfo& machine) {
   if (!o.volume.empty() && !o.dataset.empty()) throw Error("give either --volume or --dataset, not both");
   // Every option is checked (with render's checks, app/scene_options.h) before the volume is
   // opened or any cell runs.
@@ -180,7 +181,8 @@ void runGrid(const BenchOptions& o) {
   const VoxelStorage storage = VoxelStorage::forVolume(info, g.cluster.voxels);
   BenchContext ctx{commandLine(o), o.volume.empty() ? dataset : o.volume,
                    info.type, {info.dims.x, info.dims.y, info.dims.z}, o.step, o.shading == "on", o.frames, o.degrees,
-                   storage.compactFormat() ? "compact" : "float", o.distance, o.interleave};
+                   storage.compactFormat() ? "compact" : "float", o.distance, o.interleave, machine};
+  std::printf("%s", formatMachine(machine).c_str());
   std::printf("%s (%dx%dx%d %s, %s voxels), step %g, shading %s, eye at %g radii, median of %d frames turning %g "
               "deg/frame%s\n\n",
               ctx.dataset.c_str(), info.dims.x, info.dims.y, info.dims.z, info.type.c_str(), ctx.voxels.c_str(),
@@ -229,6 +231,8 @@ void run(const BenchOptions& o) {
     ~Restore() { std::signal(SIGINT, handler); }
   } restore{previous};
   auto log = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
+  // Figures mean little without the machine (Benchmark in README.md): every mode prints it first.
+  const MachineInfo machine = describeMachine(o.threads);
 
   if (o.micro) {
     MicroOptions m;
@@ -238,7 +242,7 @@ void run(const BenchOptions& o) {
     const CompositeFigure over = measureOver(1024, 1024, m.compositingRepeats);
     log("binary-swap alone, 1024x1024, P=8 ...");
     const BinarySwapFigure swap = measureBinarySwap(8, 1024, 1024, m.compositingRepeats);
-    std::printf("%s", formatMicro(rays, over, swap, m).c_str());
+    std::printf("%s%s", formatMachine(machine).c_str(), formatMicro(rays, over, swap, m).c_str());
     std::vector<BinarySwapFigure> strategies;
     for (const CompositingReference& r : compositingReferences()) {
       if (gStop.load()) break;
@@ -248,7 +252,8 @@ void run(const BenchOptions& o) {
     }
     std::printf("\n%s", formatCompositingTable(strategies).c_str());
   } else if (o.paper) {
-    std::printf("%s", runPaperComparison(o.frames, log, &gStop).c_str());
+    const std::string comparison = runPaperComparison(o.frames, log, &gStop);
+    std::printf("%s%s", formatMachine(machine).c_str(), comparison.c_str());
   } else if (o.targets) {
     // The CT head target runs after minutes of others: a wrong --head must fail before them.
     if (o.headGiven) {
@@ -278,9 +283,9 @@ void run(const BenchOptions& o) {
       if (o.repeat > 1) log("run " + std::to_string(r) + " of " + std::to_string(o.repeat));
       runs.push_back(runSpeedTargets(t, log, &gStop));
     }
-    std::printf("%s", formatSpeedTargets(medianOfRuns(runs)).c_str());
+    std::printf("%s%s", formatMachine(machine).c_str(), formatSpeedTargets(medianOfRuns(runs)).c_str());
   } else {
-    runGrid(o);
+    runGrid(o, machine);
     return;
   }
   if (gStop.load()) throw CommandExit{130};

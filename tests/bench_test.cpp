@@ -12,12 +12,14 @@
 
 #include "core/bench/bench_grid.h"
 #include "core/bench/bench_report.h"
+#include "core/bench/machine_info.h"
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
 #include "core/bench/speed_targets.h"
 #include "core/volume/respaced_source.h"
 #include "core/bench/speedup_chart.h"
 #include "core/bench/statistics.h"
+#include "core/render/ray_march.h"
 #include "core/image/image_io.h"
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
@@ -70,6 +72,32 @@ TEST_CASE("a one-cell grid yields one cell with every frame counted, and CSV and
   for (const char* key : {"strategy", "nodes", "image", "frames", "render_s", "composite_s", "wall_s", "modelled_s",
                           "speedup", "samples_per_s", "bytes_sent"})
     CHECK_MESSAGE(j["cells"][0].contains(key), key);
+}
+
+TEST_CASE("the machine is described from /proc/cpuinfo's text, with family and model, and recorded in bench.json") {
+  const std::string cpuinfo =
+      "processor\t: 0\nvendor_id\t: AuthenticAMD\ncpu family\t: 26\nmodel\t\t: 2\n"
+      "model name\t: AMD EPYC\nflags\t\t: fpu avx2\n\nprocessor\t: 1\nmodel name\t: Other\n";
+  const MachineInfo m = describeMachine(3, cpuinfo);
+  CHECK(m.cpu == "AMD EPYC (family 26 model 2)");  // the first processor's, family and model apart from "model name"
+  CHECK(m.threads == 3);
+  CHECK(m.logicalCpus >= 1);
+  CHECK(m.march == marchName(selectedMarchFunction()));
+  CHECK(m.startedUtc.size() == 20);  // 2026-12-03T20:30:00Z
+  CHECK(m.startedUtc[10] == 'T');
+  CHECK(m.startedUtc.back() == 'Z');
+  CHECK(describeMachine(0, "").cpu == "unknown CPU");
+  CHECK(describeMachine(0, "").threads >= 1);  // 0: every core, as the run uses
+  CHECK(describeMachine(0, "model name : Arm Neoverse\n").cpu == "Arm Neoverse");  // no family or model lines
+  CHECK(formatMachine(m).rfind("machine: AMD EPYC (family 26 model 2), ", 0) == 0);
+
+  BenchContext ctx;
+  ctx.machine = m;
+  const nlohmann::json j = benchJson(ctx, BenchResult{});
+  CHECK(j["machine"]["cpu"] == m.cpu);
+  CHECK(j["machine"]["threads"] == 3);
+  CHECK(j["machine"]["ray_march"] == m.march);
+  CHECK(j["machine"]["started_utc"] == m.startedUtc);
 }
 
 TEST_CASE("a stop flag already set ends the grid with no cells and says it was interrupted") {

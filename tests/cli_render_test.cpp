@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -189,4 +190,9 @@ TEST_CASE("kdswap bench --interleave says so in bench.json and the recorded comm
   CHECK(j["settings"]["interleaved"] == true);
   CHECK(j["command"].get<std::string>().find(" --interleave") != std::string::npos);
   CHECK(j["cells"].size() == 4);
+  // Where it ran: this machine's CPU count, and a kernel name.
+  CHECK(j["machine"]["logical_cpus"].get<int>() == int(std::thread::hardware_concurrency()));
+  CHECK_FALSE(j["machine"]["cpu"].get<std::string>().empty());
+  const std::string march = j["machine"]["ray_march"];
+  CHECK((march == "scalar" || march == "avx2" || march == "avx2+avx512vl"));
 }

@@ -144,6 +144,7 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
                    {"degrees_per_frame", ctx.degreesPerFrame},
                    {"view_distance", ctx.viewDistance},
                    {"interleaved", ctx.interleaved}};
+  j["machine"] = machineJson(ctx.machine);
   j["statistic"] = "median over frames (warm-up frame excluded); render and composite are maxima over nodes";
   j["interrupted"] = result.interrupted;
   nlohmann::json cells = nlohmann::json::array();

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/bench/machine_info.h"
 #include "core/bench/bench_grid.h"
 
 namespace kdswap {
@@ -24,6 +25,7 @@ struct BenchContext {
   std::string voxels = "float";  //!< the bricks' storage: "float" or "compact"
   float viewDistance = 0;        //!< eye distance, bounding-sphere radii
   bool interleaved = false;      //!< frames measured in rounds over the cells (BenchGridOptions::interleave)
+  MachineInfo machine;           //!< where it ran ("machine" in bench.json)
 };
 
 //! Paper layout, one table per strategy: times in ms, maximum over nodes.
