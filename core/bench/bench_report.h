@@ -7,8 +7,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "core/bench/machine_info.h"
 #include "core/bench/bench_grid.h"
+#include "core/bench/machine_info.h"
 
 namespace kdswap {
 

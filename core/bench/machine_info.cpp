@@ -6,6 +6,7 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include <oneapi/tbb/info.h>
 
 #include "core/render/ray_march.h"
