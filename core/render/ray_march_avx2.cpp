@@ -1,6 +1,7 @@
 // AVX2 ray march: eight consecutive lattice samples at once. [Sections] shading of eight samples
 // | the march (empty-space test per group of eight, visible samples packed eight to a shading,
-// the rays' last few samples packed across rays).
+// the rays' last few samples packed across rays; before it, eight rays at a time hop over the
+// empty space in front of their first visible samples).
 // Each step is the scalar reference's operation (ray_march.cpp, sample_shader.h) in the same
 // order; nothing is fused (this file enables AVX2 only, not FMA, and the build compiles with
 // -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
@@ -13,6 +14,7 @@
 #include "core/render/ray_march.h"
 
 #include <climits>
+#include <cstddef>
 #include <type_traits>
 
 #include "core/util/cpu_features.h"
@@ -535,9 +537,131 @@ class TailPacker {
   int size_ = 0, count_ = 0;
 };
 
+//! Eight rays' lattice, one ray per lane.
+struct EightRays {
+  __m256 ox, oy, oz, dx, dy, dz, ix, iy, iz, phase, step;
+  __m256i first, last;
+};
+
+//! Rows r[0..7] of eight floats to columns: lane j of out[c] is r[j][c].
+KDSWAP_AVX2 inline void transpose8(const __m256* r, __m256* out) {
+  __m256 t[8], u[8];
+  for (int i = 0; i < 4; ++i) {
+    t[2 * i] = _mm256_unpacklo_ps(r[2 * i], r[2 * i + 1]);
+    t[2 * i + 1] = _mm256_unpackhi_ps(r[2 * i], r[2 * i + 1]);
+  }
+  for (int h = 0; h < 2; ++h) {  // rows 0-3, then 4-7: columns c | c + 4 of four rows
+    u[4 * h + 0] = _mm256_shuffle_ps(t[4 * h], t[4 * h + 2], _MM_SHUFFLE(1, 0, 1, 0));
+    u[4 * h + 1] = _mm256_shuffle_ps(t[4 * h], t[4 * h + 2], _MM_SHUFFLE(3, 2, 3, 2));
+    u[4 * h + 2] = _mm256_shuffle_ps(t[4 * h + 1], t[4 * h + 3], _MM_SHUFFLE(1, 0, 1, 0));
+    u[4 * h + 3] = _mm256_shuffle_ps(t[4 * h + 1], t[4 * h + 3], _MM_SHUFFLE(3, 2, 3, 2));
+  }
+  for (int c = 0; c < 4; ++c) {
+    out[c] = _mm256_permute2f128_ps(u[c], u[c + 4], 0x20);
+    out[c + 4] = _mm256_permute2f128_ps(u[c], u[c + 4], 0x31);
+  }
+}
+
+// eightRays reads a segment's first 64 bytes as two rows of eight 4-byte words.
+static_assert(sizeof(RaySegment) % sizeof(float) == 0 && offsetof(RaySegment, inverseStep) % sizeof(float) == 0,
+              "skipLeadingEmpty gathers inverseStep with a float stride");
+static_assert(offsetof(RaySegment, origin) == 0 && offsetof(RaySegment, inverseDirection) == 24 &&
+                  offsetof(RaySegment, step) == 36 && offsetof(RaySegment, phase) == 40 &&
+                  offsetof(RaySegment, first) == 48 && offsetof(RaySegment, last) == 56 && sizeof(long) == 8,
+              "RaySegment's layout changed: update eightRays");
+
+//! Segments s[0 .. n-1] (n <= 8) in lanes, by two 8 x 8 transposes; lanes past n repeat segment 0.
+//! first and last are the low halves of the 64-bit indices (little-endian; indices along one ray
+//! fit an int, as groupAt assumes).
+KDSWAP_AVX2 inline EightRays eightRays(const RaySegment* s, int n) {
+  __m256 rows[8], columns[8];
+  for (int j = 0; j < kLanes; ++j) rows[j] = _mm256_loadu_ps(&s[j < n ? j : 0].origin.x);
+  transpose8(rows, columns);
+  EightRays r;
+  r.ox = columns[0], r.oy = columns[1], r.oz = columns[2], r.dx = columns[3], r.dy = columns[4], r.dz = columns[5];
+  r.ix = columns[6], r.iy = columns[7];
+  for (int j = 0; j < kLanes; ++j) rows[j] = _mm256_loadu_ps(&s[j < n ? j : 0].origin.x + 8);
+  transpose8(rows, columns);  // iz, step, phase, padding, first, first's high half, last, last's high half
+  r.iz = columns[0], r.step = columns[1], r.phase = columns[2];
+  r.first = _mm256_castps_si256(columns[4]), r.last = _mm256_castps_si256(columns[6]);
+  return r;
+}
+
+//! cubeExit with the ray's direction per lane: the far face where the direction is positive, the
+//! near one where negative, +infinity where it is 0. The same operations per lane, so the same t
+//! (where it is a number; 0 where it is not, which only makes the hop shorter).
+KDSWAP_AVX2 inline __m256 cubeExitLanes(__m256i cell, __m256i reach, __m256 boxLo, __m256 boxHi, __m128i shift,
+                                        __m256 origin, __m256 direction, __m256 inverse) {
+  const __m256 high = _mm256_min_ps(_mm256_cvtepi32_ps(_mm256_sll_epi32(_mm256_add_epi32(cell, reach), shift)), boxHi);
+  const __m256 low = _mm256_max_ps(
+      _mm256_cvtepi32_ps(_mm256_sll_epi32(_mm256_sub_epi32(cell, _mm256_sub_epi32(reach, _mm256_set1_epi32(1))), shift)),
+      boxLo);
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 face = _mm256_blendv_ps(low, high, _mm256_cmp_ps(direction, zero, _CMP_GT_OQ));
+  __m256 t = _mm256_mul_ps(_mm256_sub_ps(face, origin), inverse);
+  t = _mm256_and_ps(t, _mm256_cmp_ps(t, t, _CMP_ORD_Q));  // 0 * infinity (a direction ~1e-39): no hop, 0
+  return _mm256_blendv_ps(t, _mm256_set1_ps(std::numeric_limits<float>::infinity()),
+                          _mm256_cmp_ps(direction, zero, _CMP_EQ_OQ));
+}
+
+//! Before the march, up to eight rays step over the empty space in front of their first visible
+//! sample together, one ray per lane: a hop is a gather and a dozen dependent operations, which a
+//! ray marched alone waits out hop after hop (most of a frame's fixed cost per ray, measured on
+//! the default scene), while eight rays' hops overlap. first[j] becomes an index at or before ray
+//! j's first sample in a cell that can be visible, with every sample before it invisible, by the
+//! march's own rule (RaySegment::resumeAfterEmpty), or last + 1 when there is none. The march
+//! then takes exactly the samples it would have taken from s[j].first, so the image is the same.
+KDSWAP_AVX2 inline void skipLeadingEmpty(const MarchContext& m, const BrickConstants& bc, const RaySegment* s, int n,
+                                         long* first) {
+  const EightRays r = eightRays(s, n);
+  __m256i k = r.first;
+  __m256i active = _mm256_andnot_si256(_mm256_cmpgt_epi32(k, r.last), _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane));
+  const __m256i one = _mm256_set1_epi32(1);
+  __m256 inverseStep = _mm256_setzero_ps();
+  bool haveInverseStep = false;
+  while (!_mm256_testz_si256(active, active)) {
+    // Sample k of each lane, exactly as RaySegment::point and groupAt compute it.
+    const __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(k), r.phase), r.step);
+    const __m256 px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
+                 pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
+    const __m256i cx = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(px), bc.cellShift), bc.cellLoX);
+    const __m256i cy = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(py), bc.cellShift), bc.cellLoY);
+    const __m256i cz = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(pz), bc.cellShift), bc.cellLoZ);
+    const __m256i cell = _mm256_and_si256(  // finished lanes look at cell 0
+        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, bc.countY), cy), bc.countX), cx),
+        active);
+    const __m256i reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(m.reach), cell, 1),
+                                           _mm256_set1_epi32(0xFF));
+    const __m256i empty = _mm256_andnot_si256(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()), active);
+    if (_mm256_testz_si256(empty, empty)) break;
+    if (!haveInverseStep) {  // only rays that hop need it
+      const __m256i at = _mm256_mullo_epi32(_mm256_and_si256(bc.lane, _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane)),
+                                            _mm256_set1_epi32(int(sizeof(RaySegment) / sizeof(float))));
+      inverseStep = _mm256_i32gather_ps(&s[0].inverseStep, at, 4);
+      haveInverseStep = true;
+    }
+    const __m256 tExit = _mm256_min_ps(
+        _mm256_min_ps(cubeExitLanes(_mm256_add_epi32(cx, bc.cellLoX), reach, bc.boxLoX, bc.boxHiX, bc.cellShift, r.ox,
+                                    r.dx, r.ix),
+                      cubeExitLanes(_mm256_add_epi32(cy, bc.cellLoY), reach, bc.boxLoY, bc.boxHiY, bc.cellShift, r.oy,
+                                    r.dy, r.iy)),
+        cubeExitLanes(_mm256_add_epi32(cz, bc.cellLoZ), reach, bc.boxLoZ, bc.boxHiZ, bc.cellShift, r.oz, r.dz, r.iz));
+    // floor(tExit / step - phase) - 1, one index early for rounding, capped past the segment's end;
+    // then at least one sample on.
+    __m256 index = _mm256_floor_ps(_mm256_sub_ps(_mm256_mul_ps(tExit, inverseStep), r.phase));
+    index = _mm256_min_ps(index, _mm256_cvtepi32_ps(_mm256_add_epi32(r.last, one)));
+    const __m256i resume = _mm256_max_epi32(_mm256_add_epi32(k, one), _mm256_sub_epi32(_mm256_cvttps_epi32(index), one));
+    k = _mm256_blendv_epi8(k, resume, empty);
+    active = _mm256_andnot_si256(_mm256_cmpgt_epi32(k, r.last), empty);
+  }
+  alignas(32) int out[kLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out), k);
+  for (int j = 0; j < n; ++j) first[j] = std::min<long>(out[j], s[j].last + 1);
+}
+
 template <typename VoxelT>
 KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchContext& m, const BrickConstants& bc,
-                                                                const RaySegment& s, std::uint64_t& samples,
+                                                                const RaySegment& s, long first, std::uint64_t& samples,
                                                                 RayTail& tail) {
   FrontToBack& result = tail.result;
   tail.size = 0;
@@ -546,7 +670,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
                    _mm256_set1_ps(s.phase),       _mm256_set1_ps(s.step)};
   // Zeros before the first samples arrive: offset 0 is a voxel of the brick.
   Waiting waiting{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
-  long k = s.first;
+  long k = first;
   Group g;
   if (k <= s.last) groupAt(bc, r, m.reach, k, s.last, g);
   while (k <= s.last) {
@@ -601,9 +725,11 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
   const BrickConstants constants = brickConstants(m);
   std::uint64_t taken = 0;  // a local: the callee's increments stay in a register
   TailPacker<VoxelT> tails(m, colours, taken);
+  long first[kLanes];
   for (std::size_t i = 0; i < count; ++i) {
+    if (i % kLanes == 0) skipLeadingEmpty(m, constants, segments + i, int(std::min<std::size_t>(kLanes, count - i)), first);
     RayTail tail;
-    marchRay<VoxelT>(m, constants, segments[i], taken, tail);
+    marchRay<VoxelT>(m, constants, segments[i], first[i % kLanes], taken, tail);
     if (tail.size == 0)
       colours[i] = tail.result.rgba();
     else
