@@ -611,14 +611,14 @@ KDSWAP_AVX2 inline __m256 cubeExitLanes(__m256i cell, __m256i reach, __m256 boxL
 //! j's first sample in a cell that can be visible, with every sample before it invisible, by the
 //! march's own rule (RaySegment::resumeAfterEmpty), or last + 1 when there is none. The march
 //! then takes exactly the samples it would have taken from s[j].first, so the image is the same.
-KDSWAP_AVX2 inline void skipLeadingEmpty(const MarchContext& m, const BrickConstants& bc, const RaySegment* s, int n,
+KDSWAP_AVX2 inline bool skipLeadingEmpty(const MarchContext& m, const BrickConstants& bc, const RaySegment* s, int n,
                                          long* first) {
   const EightRays r = eightRays(s, n);
   __m256i k = r.first;
   __m256i active = _mm256_andnot_si256(_mm256_cmpgt_epi32(k, r.last), _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane));
   const __m256i one = _mm256_set1_epi32(1);
   __m256 inverseStep = _mm256_setzero_ps();
-  bool haveInverseStep = false;
+  bool haveInverseStep = false, hopped = false;
   while (!_mm256_testz_si256(active, active)) {
     // Sample k of each lane, exactly as RaySegment::point and groupAt compute it.
     const __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(k), r.phase), r.step);
@@ -634,6 +634,7 @@ KDSWAP_AVX2 inline void skipLeadingEmpty(const MarchContext& m, const BrickConst
                                            _mm256_set1_epi32(0xFF));
     const __m256i empty = _mm256_andnot_si256(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()), active);
     if (_mm256_testz_si256(empty, empty)) break;
+    hopped = true;
     if (!haveInverseStep) {  // only rays that hop need it
       const __m256i at = _mm256_mullo_epi32(_mm256_and_si256(bc.lane, _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane)),
                                             _mm256_set1_epi32(int(sizeof(RaySegment) / sizeof(float))));
@@ -657,6 +658,7 @@ KDSWAP_AVX2 inline void skipLeadingEmpty(const MarchContext& m, const BrickConst
   alignas(32) int out[kLanes];
   _mm256_store_si256(reinterpret_cast<__m256i*>(out), k);
   for (int j = 0; j < n; ++j) first[j] = std::min<long>(out[j], s[j].last + 1);
+  return hopped;
 }
 
 template <typename VoxelT>
@@ -726,8 +728,20 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
   std::uint64_t taken = 0;  // a local: the callee's increments stay in a register
   TailPacker<VoxelT> tails(m, colours, taken);
   long first[kLanes];
+  // Neighbouring rays meet alike space: after eight rays with nothing to hop over (dense data,
+  // small bricks), the next few eights start their march at once, which costs only the hops the
+  // march makes itself; every fourth eight looks again.
+  int quietEights = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    if (i % kLanes == 0) skipLeadingEmpty(m, constants, segments + i, int(std::min<std::size_t>(kLanes, count - i)), first);
+    if (i % kLanes == 0) {
+      const int n = int(std::min<std::size_t>(kLanes, count - i));
+      if (quietEights % 4 == 0) {
+        quietEights = skipLeadingEmpty(m, constants, segments + i, n, first) ? 0 : 1;
+      } else {
+        for (int j = 0; j < n; ++j) first[j] = segments[i + std::size_t(j)].first;
+        ++quietEights;
+      }
+    }
     RayTail tail;
     marchRay<VoxelT>(m, constants, segments[i], first[i % kLanes], taken, tail);
     if (tail.size == 0)
