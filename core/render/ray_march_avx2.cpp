@@ -604,61 +604,122 @@ KDSWAP_AVX2 inline __m256 cubeExitLanes(__m256i cell, __m256i reach, __m256 boxL
                           _mm256_cmp_ps(direction, zero, _CMP_EQ_OQ));
 }
 
-//! Before the march, up to eight rays step over the empty space in front of their first visible
-//! sample together, one ray per lane: a hop is a gather and a dozen dependent operations, which a
-//! ray marched alone waits out hop after hop (most of a frame's fixed cost per ray, measured on
-//! the default scene), while eight rays' hops overlap. first[j] becomes an index at or before ray
-//! j's first sample in a cell that can be visible, with every sample before it invisible, by the
-//! march's own rule (RaySegment::resumeAfterEmpty), or last + 1 when there is none. The march
-//! then takes exactly the samples it would have taken from s[j].first, so the image is the same.
-KDSWAP_AVX2 inline bool skipLeadingEmpty(const MarchContext& m, const BrickConstants& bc, const RaySegment* s, int n,
-                                         long* first) {
-  const EightRays r = eightRays(s, n);
-  __m256i k = r.first;
-  __m256i active = _mm256_andnot_si256(_mm256_cmpgt_epi32(k, r.last), _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane));
-  const __m256i one = _mm256_set1_epi32(1);
-  __m256 inverseStep = _mm256_setzero_ps();
-  bool haveInverseStep = false, hopped = false;
-  while (!_mm256_testz_si256(active, active)) {
+//! Before the march, rays step over the empty space in front of their first visible sample
+//! together, one ray per lane: a hop is a gather and a dozen dependent operations, which a ray
+//! marched alone waits out hop after hop (most of a frame's fixed cost per ray, measured on the
+//! default scene), while eight rays' hops share the wait, and several eights' hops, interleaved,
+//! overlap. Each ray ends at an index at or before its first sample in a cell that can be visible,
+//! with every sample before it invisible, by the march's own rule (RaySegment::resumeAfterEmpty),
+//! or at last + 1 when there is none. The march then takes exactly the samples it would have taken
+//! from the segment's first, so the image is the same.
+class LeadingHops {
+ public:
+  //! Segments s[0 .. n-1] (n <= 8) in lanes; the first hop test is done at once.
+  KDSWAP_AVX2 void start(const MarchContext& m, const BrickConstants& bc, const RaySegment* s, int n) {
+    s_ = s, n_ = n;
+    r_ = eightRays(s, n);
+    k_ = r_.first;
+    active_ = _mm256_andnot_si256(_mm256_cmpgt_epi32(k_, r_.last), _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane));
+    hopped_ = false;
+    haveInverseStep_ = false;
+    hop(m, bc);
+  }
+  //! True while some ray may still hop.
+  KDSWAP_AVX2 bool active() const { return !_mm256_testz_si256(active_, active_); }
+  //! True when some ray hopped at all (the first test found empty space).
+  bool hopped() const { return hopped_; }
+
+  //! One hop of every ray still in empty space; rays whose sample lies in a visible cell, or past
+  //! their last, stop.
+  KDSWAP_AVX2 void hop(const MarchContext& m, const BrickConstants& bc) {
+    const __m256i one = _mm256_set1_epi32(1);
     // Sample k of each lane, exactly as RaySegment::point and groupAt compute it.
-    const __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(k), r.phase), r.step);
-    const __m256 px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
-                 pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
+    const __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(k_), r_.phase), r_.step);
+    const __m256 px = _mm256_add_ps(r_.ox, _mm256_mul_ps(r_.dx, t)), py = _mm256_add_ps(r_.oy, _mm256_mul_ps(r_.dy, t)),
+                 pz = _mm256_add_ps(r_.oz, _mm256_mul_ps(r_.dz, t));
     const __m256i cx = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(px), bc.cellShift), bc.cellLoX);
     const __m256i cy = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(py), bc.cellShift), bc.cellLoY);
     const __m256i cz = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(pz), bc.cellShift), bc.cellLoZ);
     const __m256i cell = _mm256_and_si256(  // finished lanes look at cell 0
         _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, bc.countY), cy), bc.countX), cx),
-        active);
+        active_);
     const __m256i reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(m.reach), cell, 1),
                                            _mm256_set1_epi32(0xFF));
-    const __m256i empty = _mm256_andnot_si256(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()), active);
-    if (_mm256_testz_si256(empty, empty)) break;
-    hopped = true;
-    if (!haveInverseStep) {  // only rays that hop need it
-      const __m256i at = _mm256_mullo_epi32(_mm256_and_si256(bc.lane, _mm256_cmpgt_epi32(_mm256_set1_epi32(n), bc.lane)),
+    const __m256i empty = _mm256_andnot_si256(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()), active_);
+    if (_mm256_testz_si256(empty, empty)) {
+      active_ = empty;
+      return;
+    }
+    hopped_ = true;
+    if (!haveInverseStep_) {  // only rays that hop need it
+      const __m256i at = _mm256_mullo_epi32(_mm256_and_si256(bc.lane, _mm256_cmpgt_epi32(_mm256_set1_epi32(n_), bc.lane)),
                                             _mm256_set1_epi32(int(sizeof(RaySegment) / sizeof(float))));
-      inverseStep = _mm256_i32gather_ps(&s[0].inverseStep, at, 4);
-      haveInverseStep = true;
+      inverseStep_ = _mm256_i32gather_ps(&s_[0].inverseStep, at, 4);
+      haveInverseStep_ = true;
     }
     const __m256 tExit = _mm256_min_ps(
-        _mm256_min_ps(cubeExitLanes(_mm256_add_epi32(cx, bc.cellLoX), reach, bc.boxLoX, bc.boxHiX, bc.cellShift, r.ox,
-                                    r.dx, r.ix),
-                      cubeExitLanes(_mm256_add_epi32(cy, bc.cellLoY), reach, bc.boxLoY, bc.boxHiY, bc.cellShift, r.oy,
-                                    r.dy, r.iy)),
-        cubeExitLanes(_mm256_add_epi32(cz, bc.cellLoZ), reach, bc.boxLoZ, bc.boxHiZ, bc.cellShift, r.oz, r.dz, r.iz));
+        _mm256_min_ps(cubeExitLanes(_mm256_add_epi32(cx, bc.cellLoX), reach, bc.boxLoX, bc.boxHiX, bc.cellShift, r_.ox,
+                                    r_.dx, r_.ix),
+                      cubeExitLanes(_mm256_add_epi32(cy, bc.cellLoY), reach, bc.boxLoY, bc.boxHiY, bc.cellShift, r_.oy,
+                                    r_.dy, r_.iy)),
+        cubeExitLanes(_mm256_add_epi32(cz, bc.cellLoZ), reach, bc.boxLoZ, bc.boxHiZ, bc.cellShift, r_.oz, r_.dz, r_.iz));
     // floor(tExit / step - phase) - 1, one index early for rounding, capped past the segment's end;
     // then at least one sample on.
-    __m256 index = _mm256_floor_ps(_mm256_sub_ps(_mm256_mul_ps(tExit, inverseStep), r.phase));
-    index = _mm256_min_ps(index, _mm256_cvtepi32_ps(_mm256_add_epi32(r.last, one)));
-    const __m256i resume = _mm256_max_epi32(_mm256_add_epi32(k, one), _mm256_sub_epi32(_mm256_cvttps_epi32(index), one));
-    k = _mm256_blendv_epi8(k, resume, empty);
-    active = _mm256_andnot_si256(_mm256_cmpgt_epi32(k, r.last), empty);
+    __m256 index = _mm256_floor_ps(_mm256_sub_ps(_mm256_mul_ps(tExit, inverseStep_), r_.phase));
+    index = _mm256_min_ps(index, _mm256_cvtepi32_ps(_mm256_add_epi32(r_.last, one)));
+    const __m256i resume =
+        _mm256_max_epi32(_mm256_add_epi32(k_, one), _mm256_sub_epi32(_mm256_cvttps_epi32(index), one));
+    k_ = _mm256_blendv_epi8(k_, resume, empty);
+    active_ = _mm256_andnot_si256(_mm256_cmpgt_epi32(k_, r_.last), empty);
   }
-  alignas(32) int out[kLanes];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(out), k);
-  for (int j = 0; j < n; ++j) first[j] = std::min<long>(out[j], s[j].last + 1);
-  return hopped;
+
+  //! Where each ray's march starts.
+  KDSWAP_AVX2 void firsts(long* first) const {
+    alignas(32) int out[kLanes];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out), k_);
+    for (int j = 0; j < n_; ++j) first[j] = std::min<long>(out[j], s_[j].last + 1);
+  }
+
+ private:
+  const RaySegment* s_ = nullptr;
+  int n_ = 0;
+  EightRays r_;
+  __m256i k_, active_;
+  __m256 inverseStep_;
+  bool hopped_ = false, haveInverseStep_ = false;
+};
+
+//! Where the march of each of segments[0 .. count-1] (count <= 64) starts: LeadingHops for each
+//! eight, their hops interleaved. Neighbouring rays meet alike space: after eight rays with
+//! nothing to hop over (dense data, small bricks), the next three eights start their march at
+//! their first sample without looking, which costs only the hops the march makes itself.
+KDSWAP_AVX2 inline void marchStarts(const MarchContext& m, const BrickConstants& bc, const RaySegment* segments,
+                                    std::size_t count, int& quietEights, long* first) {
+  LeadingHops hops[kLanes];
+  int hopping[kLanes], live = 0;
+  for (std::size_t i = 0; i < count; i += kLanes) {
+    const int n = int(std::min<std::size_t>(kLanes, count - i));
+    if (quietEights % 4 != 0) {
+      for (int j = 0; j < n; ++j) first[i + std::size_t(j)] = segments[i + std::size_t(j)].first;
+      ++quietEights;
+      continue;
+    }
+    LeadingHops& h = hops[i / kLanes];
+    h.start(m, bc, segments + i, n);
+    quietEights = h.hopped() ? 0 : 1;
+    if (h.active()) hopping[live++] = int(i / kLanes);
+    else h.firsts(first + i);
+  }
+  while (live > 0) {  // one hop of each eight in turn: independent chains the core overlaps
+    int still = 0;
+    for (int e = 0; e < live; ++e) {
+      LeadingHops& h = hops[hopping[e]];
+      h.hop(m, bc);
+      if (h.active()) hopping[still++] = hopping[e];
+      else h.firsts(first + std::size_t(hopping[e]) * kLanes);
+    }
+    live = still;
+  }
 }
 
 template <typename VoxelT>
@@ -727,23 +788,13 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
   const BrickConstants constants = brickConstants(m);
   std::uint64_t taken = 0;  // a local: the callee's increments stay in a register
   TailPacker<VoxelT> tails(m, colours, taken);
-  long first[kLanes];
-  // Neighbouring rays meet alike space: after eight rays with nothing to hop over (dense data,
-  // small bricks), the next few eights start their march at once, which costs only the hops the
-  // march makes itself; every fourth eight looks again.
+  long first[kLanes * kLanes];
   int quietEights = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    if (i % kLanes == 0) {
-      const int n = int(std::min<std::size_t>(kLanes, count - i));
-      if (quietEights % 4 == 0) {
-        quietEights = skipLeadingEmpty(m, constants, segments + i, n, first) ? 0 : 1;
-      } else {
-        for (int j = 0; j < n; ++j) first[j] = segments[i + std::size_t(j)].first;
-        ++quietEights;
-      }
-    }
+    if (i % (kLanes * kLanes) == 0)
+      marchStarts(m, constants, segments + i, std::min<std::size_t>(kLanes * kLanes, count - i), quietEights, first);
     RayTail tail;
-    marchRay<VoxelT>(m, constants, segments[i], first[i % kLanes], taken, tail);
+    marchRay<VoxelT>(m, constants, segments[i], first[i % (kLanes * kLanes)], taken, tail);
     if (tail.size == 0)
       colours[i] = tail.result.rgba();
     else
