@@ -564,7 +564,7 @@ KDSWAP_AVX2 inline void transpose8(const __m256* r, __m256* out) {
 
 // eightRays reads a segment's first 64 bytes as two rows of eight 4-byte words.
 static_assert(sizeof(RaySegment) % sizeof(float) == 0 && offsetof(RaySegment, inverseStep) % sizeof(float) == 0,
-              "skipLeadingEmpty gathers inverseStep with a float stride");
+              "LeadingHops gathers inverseStep with a float stride");
 static_assert(offsetof(RaySegment, origin) == 0 && offsetof(RaySegment, inverseDirection) == 24 &&
                   offsetof(RaySegment, step) == 36 && offsetof(RaySegment, phase) == 40 &&
                   offsetof(RaySegment, first) == 48 && offsetof(RaySegment, last) == 56 && sizeof(long) == 8,
@@ -606,9 +606,9 @@ KDSWAP_AVX2 inline __m256 cubeExitLanes(__m256i cell, __m256i reach, __m256 boxL
 
 //! Before the march, rays step over the empty space in front of their first visible sample
 //! together, one ray per lane: a hop is a gather and a dozen dependent operations, which a ray
-//! marched alone waits out hop after hop (most of a frame's fixed cost per ray, measured on the
-//! default scene), while eight rays' hops share the wait, and several eights' hops, interleaved,
-//! overlap. Each ray ends at an index at or before its first sample in a cell that can be visible,
+//! marched alone waits out hop after hop (a large part of the default scene's cost that does not
+//! scale with its samples), while eight rays' hops share the wait, and several eights' hops,
+//! interleaved, overlap. Each ray ends at an index at or before its first sample in a cell that can be visible,
 //! with every sample before it invisible, by the march's own rule (RaySegment::resumeAfterEmpty),
 //! or at last + 1 when there is none. The march then takes exactly the samples it would have taken
 //! from the segment's first, so the image is the same.
