@@ -282,6 +282,19 @@ struct RayLanes {
   __m256 ox, oy, oz, dx, dy, dz, phase, step;
 };
 
+//! The cell (relative to the brick's first) of voxel indices (ix, iy, iz) along one axis.
+KDSWAP_AVX2 inline __m256i cellAxis(__m256i voxel, __m128i shift, __m256i cellLo) {
+  return _mm256_sub_epi32(_mm256_sra_epi32(voxel, shift), cellLo);
+}
+
+//! The empty-space map's reach at relative cells (cx, cy, cz); lanes outside `lanes` read cell 0's.
+KDSWAP_AVX2 __attribute__((always_inline)) inline __m256i reachAt(const BrickConstants& bc, const std::uint8_t* reachMap,
+                                                                  __m256i cx, __m256i cy, __m256i cz, __m256i lanes) {
+  const __m256i cell = _mm256_and_si256(
+      _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, bc.countY), cy), bc.countX), cx), lanes);
+  return _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(reachMap), cell, 1), _mm256_set1_epi32(0xFF));
+}
+
 KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConstants& bc, const RayLanes& r,
                                                                const std::uint8_t* reachMap, long k, long last, Group& g) {
   g.n = int(std::min<long>(kLanes, last - k + 1));
@@ -292,15 +305,10 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConsta
   g.px = _mm256_add_ps(r.ox, _mm256_mul_ps(r.dx, t)), g.py = _mm256_add_ps(r.oy, _mm256_mul_ps(r.dy, t)),
   g.pz = _mm256_add_ps(r.oz, _mm256_mul_ps(r.dz, t));
   const __m256i ix = _mm256_cvttps_epi32(g.px), iy = _mm256_cvttps_epi32(g.py), iz = _mm256_cvttps_epi32(g.pz);
-  g.cx = _mm256_sub_epi32(_mm256_sra_epi32(ix, bc.cellShift), bc.cellLoX);
-  g.cy = _mm256_sub_epi32(_mm256_sra_epi32(iy, bc.cellShift), bc.cellLoY);
-  g.cz = _mm256_sub_epi32(_mm256_sra_epi32(iz, bc.cellShift), bc.cellLoZ);
-  const __m256i inSegment = _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane);
-  const __m256i cell = _mm256_and_si256(  // lanes past the segment look at cell 0
-      _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(g.cz, bc.countY), g.cy), bc.countX), g.cx),
-      inSegment);
-  g.reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(reachMap), cell, 1),
-                             _mm256_set1_epi32(0xFF));
+  g.cx = cellAxis(ix, bc.cellShift, bc.cellLoX), g.cy = cellAxis(iy, bc.cellShift, bc.cellLoY),
+  g.cz = cellAxis(iz, bc.cellShift, bc.cellLoZ);
+  // Lanes past the segment look at cell 0.
+  g.reach = reachAt(bc, reachMap, g.cx, g.cy, g.cz, _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane));
   g.visible =
       _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(g.reach, _mm256_setzero_si256()))) & ((1 << g.n) - 1);
   g.offset = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, bc.loZ), bc.sz),
@@ -637,14 +645,10 @@ class LeadingHops {
     const __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(k_), r_.phase), r_.step);
     const __m256 px = _mm256_add_ps(r_.ox, _mm256_mul_ps(r_.dx, t)), py = _mm256_add_ps(r_.oy, _mm256_mul_ps(r_.dy, t)),
                  pz = _mm256_add_ps(r_.oz, _mm256_mul_ps(r_.dz, t));
-    const __m256i cx = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(px), bc.cellShift), bc.cellLoX);
-    const __m256i cy = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(py), bc.cellShift), bc.cellLoY);
-    const __m256i cz = _mm256_sub_epi32(_mm256_sra_epi32(_mm256_cvttps_epi32(pz), bc.cellShift), bc.cellLoZ);
-    const __m256i cell = _mm256_and_si256(  // finished lanes look at cell 0
-        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(cz, bc.countY), cy), bc.countX), cx),
-        active_);
-    const __m256i reach = _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(m.reach), cell, 1),
-                                           _mm256_set1_epi32(0xFF));
+    const __m256i cx = cellAxis(_mm256_cvttps_epi32(px), bc.cellShift, bc.cellLoX);
+    const __m256i cy = cellAxis(_mm256_cvttps_epi32(py), bc.cellShift, bc.cellLoY);
+    const __m256i cz = cellAxis(_mm256_cvttps_epi32(pz), bc.cellShift, bc.cellLoZ);
+    const __m256i reach = reachAt(bc, m.reach, cx, cy, cz, active_);  // finished lanes look at cell 0
     const __m256i empty = _mm256_andnot_si256(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()), active_);
     if (_mm256_testz_si256(empty, empty)) {
       active_ = empty;
