@@ -60,14 +60,39 @@ TEST_CASE("compositing onto a lent part copies the buffer first, so the reader's
   const Image front = randomImage(Rect{0, 0, 32, 32}, 3);
   std::int64_t pixels = 0;
   // Into the kept half: in place, the lent half is untouched.
-  working.merge(front.view(right), true, pixels);
+  working.merge(front.view(right), true, right, pixels);
   CHECK(pixels == right.area());
   CHECK(&working.image().at(0, 0) == viewOfMessage(lentLeft).first);
   // Onto the lent half (no strategy does this, but it must stay safe): copy on write.
-  working.merge(front.view(left), true, pixels);
+  working.merge(front.view(left), true, left, pixels);
   CHECK(&working.image().at(0, 0) != viewOfMessage(lentLeft).first);
   CHECK(samePixels(viewOfMessage(lentLeft), source.crop(left)));
   CHECK(working.image().at(3, 4).a == doctest::Approx(over(front.at(3, 4), source.at(3, 4)).a));
+}
+
+TEST_CASE("merging an image that reaches outside ours keeps only the kept region of ours") {
+  // Ours covers columns 0..31; the kept half is 16..31; theirs lies in the kept half and below it.
+  const Image mine = randomImage(Rect{0, 0, 32, 20}, 4);
+  const Image theirs = randomImage(Rect{16, 10, 16, 20}, 5);
+  const Rect keep{16, 0, 16, 30};
+  for (const bool theirsInFront : {true, false}) {
+    CAPTURE(theirsInFront);
+    WorkingImage working{Image(mine)};
+    const Message lentLeft = working.lend(Rect{0, 0, 16, 20}, false);
+    std::int64_t pixels = 0;
+    working.merge(theirs.view(), theirsInFront, keep, pixels);
+    CHECK(pixels == theirs.rect().area());
+    CHECK(working.rect() == (Rect{16, 0, 16, 30}));  // the given-away columns were not copied
+    CHECK(samePixels(viewOfMessage(lentLeft), mine.crop(Rect{0, 0, 16, 20})));
+    for (int y = keep.y; y < keep.bottom(); ++y)
+      for (int x = keep.x; x < keep.right(); ++x) {
+        const Rgba m = mine.sample(x, y), t = theirs.sample(x, y);
+        const Rgba want = theirsInFront ? over(t, m) : over(m, t);
+        const Rgba got = working.image().at(x, y);
+        CHECK(got.r == want.r);
+        CHECK(got.a == want.a);
+      }
+  }
 }
 
 TEST_CASE("blending layers in place onto one's own pixels equals blending them into a new image") {

@@ -58,7 +58,7 @@ Tile BinarySwap::compose(Image partial, const Rect& frame, const VisibilityOrder
     } else if (me < extras) {
       phases.beginPhase("fold", me + swapping);
       const Message in = comm.receive(me + swapping, kFoldTag);
-      image.merge(viewOfMessage(in), order.inFront(me + swapping, me), pixels);
+      image.merge(viewOfMessage(in), order.inFront(me + swapping, me), region, pixels);
     } else {
       phases.beginPhase("fold", -1);
     }
@@ -82,7 +82,7 @@ Tile BinarySwap::compose(Image partial, const Rect& frame, const VisibilityOrder
     comm.send(partner, kSwapTag + round, image.lend(give, options_.sparse));
     const Message in = comm.receive(partner, kSwapTag + round);
     std::int64_t pixels = 0;
-    image.merge(viewOfMessage(in), order.inFront(partner, me), pixels);
+    image.merge(viewOfMessage(in), order.inFront(partner, me), keep, pixels);
     region = keep;
     phases.endPhase(region, image.image(), pixels);
   }

@@ -115,7 +115,7 @@ Tile Telescoping::compose(Image partial, const Rect& frame, const VisibilityOrde
     comm.send(partner, kSwapTag + round, image.lend(give, options_.sparse));
     const Message in = comm.receive(partner, kSwapTag + round);
     std::int64_t pixels = 0;
-    image.merge(viewOfMessage(in), order.inFront(partner, me), pixels);
+    image.merge(viewOfMessage(in), order.inFront(partner, me), keep, pixels);
     region = keep;
     phases.endPhase(region, image.image(), pixels);
   }
@@ -138,7 +138,7 @@ Tile Telescoping::compose(Image partial, const Rect& frame, const VisibilityOrde
       const int sender = from.first + local % from.size;
       phases.beginPhase("telescope", sender);
       const Message in = comm.receive(sender, kTelescopeTag + step);
-      image.merge(viewOfMessage(in), order.inFront(sender, me), pixels);
+      image.merge(viewOfMessage(in), order.inFront(sender, me), region, pixels);
     } else {
       phases.beginPhase("telescope", -1);
     }

@@ -38,18 +38,18 @@ Image& WorkingImage::writableFor(const Rect& r) {
   return *image_;
 }
 
-void WorkingImage::merge(const ImageView& theirs, bool theirsInFront, std::int64_t& pixels) {
+void WorkingImage::merge(const ImageView& theirs, bool theirsInFront, const Rect& keep, std::int64_t& pixels) {
   if (theirs.empty()) return;
-  if (empty()) {
-    *this = WorkingImage(Image(theirs));
-    return;
-  }
-  const Rect both = rect().unite(theirs.rect);
-  if (both == rect()) {
+  if (!empty() && rect().contains(theirs.rect)) {
     pixels += compositeInto(writableFor(theirs.rect), theirs, theirsInFront);
     return;
   }
-  const ImageView mine = image_->view();
+  // A new buffer: the given-away parts of ours (lent, or stale) are left behind, not copied.
+  const ImageView mine = empty() ? ImageView{} : image_->view(keep);
+  if (mine.empty()) {
+    *this = WorkingImage(Image(theirs));
+    return;
+  }
   pixels += theirs.rect.area();
   *this = WorkingImage(theirsInFront ? overOf(theirs, mine) : overOf(mine, theirs));
 }

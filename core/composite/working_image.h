@@ -32,9 +32,11 @@ class WorkingImage {
 
   //! A message lending the pixels inside `part` (cut to their non-empty bounds when `sparse`).
   Message lend(const Rect& part, bool sparse);
-  //! Composites `theirs` with this image over the union of their rects; `theirsInFront` gives the
-  //! order. Adds the pixels blended to `pixels`.
-  void merge(const ImageView& theirs, bool theirsInFront, std::int64_t& pixels);
+  //! Composites `theirs` with this image; `theirsInFront` gives the order. Only the pixels inside
+  //! `keep` (the node's region from here on) are needed afterwards: where the result needs a new
+  //! buffer it covers theirs and this image's part inside `keep`, not the parts given away.
+  //! Adds the pixels blended to `pixels`.
+  void merge(const ImageView& theirs, bool theirsInFront, const Rect& keep, std::int64_t& pixels);
   //! Makes the pixels of `target` the composite of `layers`, given front to back. Layer `self`
   //! (or none, -1) is this image's own part of `target`: the others are blended onto it in place,
   //! in one pass over row blocks, so the result is written once. Adds the pixels blended.
