@@ -11,6 +11,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "core/render/empty_space_map.h"
+#include "core/util/cpu_features.h"
 
 namespace kdswap {
 namespace {
@@ -23,18 +24,6 @@ constexpr float kOpacityMargin = 1e-3f;
 //! A block of one-voxel cells is used when its cells add, on average, at least this share of the
 //! termination depth per sample over the whole cell's (see useFineCells).
 constexpr double kMinFineGain = 0.04;
-
-//! The lattice indices a walk counts in its segment [t, end): first, and one past the last, the
-//! points at least a margin inside (a fiftieth of a step, and rounding of t), so rounding in
-//! positions and boundaries never counts a sample twice or in the wrong cell. One rule for the
-//! cell walk and the voxel-cell walk (the eight-lane walk spells out the same operations).
-struct CountedRange {
-  float first, last;
-};
-inline CountedRange countedRange(float t, float end, float perStep, float step, float phase) {
-  const float margin = 0.02f * step + 1e-6f * std::fabs(end);
-  return {std::ceil((t + margin) * perStep - phase), std::ceil((end - margin) * perStep - phase)};
-}
 
 //! -ln(1 - a), rounded down, so a sum of them stays a lower bound of the optical depth.
 float depthOfOpacity(float a) {
@@ -151,6 +140,7 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
     : count_(cells.count), domainHi_(glm::vec3(cells.dims - 1)) {
   if (!(stopAt > 0.0f && stopAt + kOpacityMargin < 1.0f) || cells.ranges.empty()) return;
   active_ = true;
+  fineInEights_ = cpuHasAvx2();
   threshold_ = float(-std::log1p(-double(stopAt + kOpacityMargin)));
   depth_.resize(cells.ranges.size());
   for (std::size_t i = 0; i < depth_.size(); ++i) {
@@ -232,7 +222,8 @@ void OcclusionGrid::useFineCells(const CellRangeGrid& cells, const TransferTable
   });
   const std::size_t blocks = std::size_t(std::count(useful.begin(), useful.end(), std::uint8_t(1)));
   // Blocks aligned to cache lines: the walk reads one line per cell it steps through voxel by voxel.
-  fineCode_.assign(blocks * kFine + 63, 0);
+  // Three bytes more: walkFineEights reads each code as the low byte of four.
+  fineCode_.assign(blocks * kFine + 63 + 3, 0);
   fineOffset_ = std::size_t((64 - reinterpret_cast<std::uintptr_t>(fineCode_.data()) % 64) % 64);
   std::size_t b = 0;
   for (std::size_t k = 0; k < fineCells.size(); ++k)
@@ -377,6 +368,12 @@ long OcclusionGrid::walk(Walk w, float step) const {
 
 bool OcclusionGrid::walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step,
                              float phase, float& sum, long& reached) const {
+  return fineInEights_ ? walkFineEights(ray, cx, cy, cz, block, t, end, step, phase, sum, reached)
+                       : walkFineOneByOne(ray, cx, cy, cz, block, t, end, step, phase, sum, reached);
+}
+
+bool OcclusionGrid::walkFineOneByOne(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end,
+                                     float step, float phase, float& sum, long& reached) const {
   // The samples this segment counts (the cell walk's rule: lattice points a margin inside), each
   // credited with the depth of the one-voxel cell it falls in. A sample the renderer places a
   // rounding away, across a voxel face, interpolates a value within rounding of the face's,

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <climits>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -111,8 +112,24 @@ class OcclusionGrid {
   //! `block` of fineCode_: adds their samples to `sum` voxel by voxel, with the cell walk's
   //! counting rule. True, with the lattice index in `reached`, when the threshold is reached.
   //! Called by both walks (scalar and eight at once), so they stay equal bit for bit.
+  //! With AVX2, eight samples at a time (walkFineEights), else walkFineOneByOne: the same answer.
   bool walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step, float phase,
                 float& sum, long& reached) const;
+  //! walkFine one sample at a time: the reference the eight-sample walk equals bit for bit.
+  bool walkFineOneByOne(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step,
+                        float phase, float& sum, long& reached) const;
+
+  //! The lattice indices a walk counts in its segment [t, end): first, and one past the last, the
+  //! points at least a margin inside (a fiftieth of a step, and rounding of t), so rounding in
+  //! positions and boundaries never counts a sample twice or in the wrong cell. One rule for the
+  //! cell walk and the voxel-cell walk (the eight-lane walk spells out the same operations).
+  struct CountedRange {
+    float first, last;
+  };
+  static CountedRange countedRange(float t, float end, float perStep, float step, float phase) {
+    const float margin = 0.02f * step + 1e-6f * std::fabs(end);
+    return {std::ceil((t + margin) * perStep - phase), std::ceil((end - margin) * perStep - phase)};
+  }
 
  private:
   //! One ray's walk through the cells, between cell crossings (for the walks in occlusion_grid*.cpp).
@@ -136,6 +153,11 @@ class OcclusionGrid {
   //! occludedFrom of eight rays, started and walked eight at once (occlusion_grid_avx2.cpp): the
   //! same answers; false when this CPU or build has no AVX2.
   bool walkRays8(const VoxelRays8& rays, float step, long* out) const;
+  //! walkFineOneByOne with the positions, voxel-cell codes and their depths of eight samples at a
+  //! time (AVX2, occlusion_grid_avx2.cpp; the sum still adds them one by one, in order). The
+  //! per-sample loads were a fine walk's latency; the phantom's skull makes most walks fine ones.
+  bool walkFineEights(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step,
+                      float phase, float& sum, long& reached) const;
 
   glm::ivec3 count_{0};
   glm::vec3 domainHi_{0.0f};  //!< samples lie in [0, dims - 1) per axis
@@ -154,6 +176,7 @@ class OcclusionGrid {
   float depthOfCode_[256] = {};  //!< the optical depth each code stands for, rounded down
   float threshold_ = 0.0f;  //!< sum needed for opacity >= stopAt, with a margin for rounding
   bool active_ = false;
+  bool fineInEights_ = false;  //!< this CPU runs walkFineEights
 };
 
 }  // namespace kdswap
