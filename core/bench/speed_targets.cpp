@@ -222,8 +222,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
   // "At most 2 x the time of copying the same number of bytes": the whole exchange (wall) against
   // a memcpy of as many bytes as all nodes send, timed in the same run.
   out.push_back({"binary-swap 1024^2, P=8: whole exchange <= 2 x copying the bytes it sends", "kdswap bench --micro",
-                 swap.copySentSeconds() > 0 ? swap.wallSeconds / swap.copySentSeconds() : 0.0, 2.0, "x", false, true,
-                 "copying " + std::to_string(swap.bytesSent >> 20) + " MiB: " + ms(swap.copySentSeconds()) +
+                 swap.copySentSeconds > 0 ? swap.wallSeconds / swap.copySentSeconds : 0.0, 2.0, "x", false, true,
+                 "copying " + std::to_string(swap.bytesSent >> 20) + " MiB: " + ms(swap.copySentSeconds) +
                      "; one node's composite time / copy of one image: " +
                      fixed(swap.copySeconds > 0 ? swap.compositeMaxSeconds / swap.copySeconds : 0.0) + " x"});
   // miniGraphics' 32 ms is the wall time of 8 ranks sharing the 2 cores: compare wall with wall.
