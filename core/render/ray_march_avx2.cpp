@@ -148,6 +148,35 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
   const __m256 yz[4] = {_mm256_mul_ps(gy, gz), _mm256_mul_ps(fy, gz), _mm256_mul_ps(gy, fz), _mm256_mul_ps(fy, fz)};
   const std::ptrdiff_t at[4] = {0, sy, sz, sz + sy};
   __m128 sample[kLanes];
+#if defined(KDSWAP_MARCH_AVX512VL)
+  // Two samples a register (j in the low 256 bits, j + 1 in the high): the same operations per
+  // lane, fewer instructions (turbulence 256^3, P = 64: ~5% faster; the float format's pairs of
+  // pairs, tried the same way, were ~5% slower). The zero-masking forms with every lane set are
+  // the plain instructions; GCC 12's unmasked ones warn of an undefined pass-through operand.
+  constexpr __mmask16 kAll16 = 0xFFFF;
+  const __m512 xWeights = _mm512_insertf32x8(_mm512_castps256_ps512(gx), fx, 1);  // gx lanes 0-7, fx 8-15
+  for (int j = 0; j < kLanes; j += 2) {
+    const __m512i both = _mm512_set_epi32(j + 1, j + 1, j + 1, j + 1, j + 1, j + 1, j + 1, j + 1, j, j, j, j, j, j, j, j);
+    __m512 faces = _mm512_setzero_ps();
+    for (int c = 0; c < 4; ++c) {
+      const __m256i raw = _mm256_inserti128_si256(
+          _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(corner[j] + at[c]))),
+          _mm_loadu_si128(reinterpret_cast<const __m128i*>(corner[j + 1] + at[c])), 1);
+      const __m512 pair = _mm512_maskz_cvtepi32_ps(kAll16, _mm512_maskz_cvtepi16_epi32(kAll16, raw));
+      const __m512 term = _mm512_mul_ps(_mm512_maskz_permutexvar_ps(kAll16, both, _mm512_castps256_ps512(yz[c])), pair);
+      faces = c == 0 ? term : _mm512_add_ps(faces, term);
+    }
+    // Lanes of sample j: gx_j x 4, fx_j x 4; of sample j + 1 the same with j + 1.
+    const __m512i xPick = _mm512_set_epi32(9 + j, 9 + j, 9 + j, 9 + j, j + 1, j + 1, j + 1, j + 1, 8 + j, 8 + j, 8 + j,
+                                           8 + j, j, j, j, j);
+    faces = _mm512_mul_ps(faces, _mm512_maskz_permutexvar_ps(kAll16, xPick, xWeights));
+    // face(x) + face(x + 1) of each sample: its two 128-bit quarters added (the sum commutes).
+    const __m512 sums =
+        _mm512_add_ps(faces, _mm512_maskz_shuffle_f32x4(kAll16, faces, faces, _MM_SHUFFLE(2, 3, 0, 1)));
+    sample[j] = _mm512_maskz_extractf32x4_ps(0xF, sums, 0);
+    sample[j + 1] = _mm512_maskz_extractf32x4_ps(0xF, sums, 2);
+  }
+#else
   for (int j = 0; j < kLanes; ++j) {
     const __m256i lane = _mm256_set1_epi32(j);
     __m256 faces = _mm256_setzero_ps();
@@ -161,6 +190,7 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
     faces = _mm256_mul_ps(faces, blend);
     sample[j] = _mm_add_ps(_mm256_castps256_ps128(faces), _mm256_extractf128_ps(faces, 1));
   }
+#endif
   __m256 t[4];
   for (int j = 0; j < 4; ++j) t[j] = _mm256_set_m128(sample[j + 4], sample[j]);
   transposeHalves(t, out);
