@@ -13,6 +13,7 @@
 #include "core/bench/bench_grid.h"
 #include "core/bench/bench_report.h"
 #include "core/bench/machine_info.h"
+#include "core/bench/micro_bench.h"
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
 #include "core/bench/speed_targets.h"
@@ -352,4 +353,16 @@ TEST_CASE("an interleaved grid stopped midway keeps every cell with a frame meas
   CHECK(r.cells[0].frames == 2);
   CHECK(r.cells[1].frames == 1);
   CHECK(r.cells[2].frames == 1);
+}
+
+TEST_CASE("the compositing harness reports the bytes an exchange sends and times a copy of them") {
+  // Binary swap, P = 4, full 64x64 frames of 16-byte pixels: phase 1 gives away half the frame,
+  // phase 2 half of the rest, on every node, each message with its rectangle (four 8-byte
+  // integers): 4 x (32768 + 16384 + 2 x 32) bytes. The yardstick is a copy of that many bytes,
+  // timed after each run, so it is measured and positive.
+  const BinarySwapFigure f = measureCompositing("binary-swap", 4, 64, 64, 3);
+  CHECK(f.bytesSent == 4u * (64u * 64u * 16u / 2u + 64u * 64u * 16u / 4u + 2u * 32u));
+  CHECK(f.copySentSeconds > 0.0);
+  CHECK(f.copySeconds > 0.0);
+  CHECK(f.wallSeconds > 0.0);
 }
