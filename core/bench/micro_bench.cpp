@@ -74,29 +74,19 @@ class IgnorePhases : public PhaseObserver {
   void endPhase(const Rect&, const Image&, std::int64_t) override {}
 };
 
-double copySeconds(int width, int height, int repeats) {
-  Image src(Rect{0, 0, width, height}), dst(Rect{0, 0, width, height});
-  fillSynthetic(src, 1);
-  std::vector<double> times;
-  for (int i = 0; i <= repeats; ++i) {
-    const double t0 = nowSeconds();
-    std::memcpy(dst.values().data(), src.values().data(), src.bytes());
-    const double t = nowSeconds() - t0;
-    if (i > 0) times.push_back(t);
-  }
-  return median(times);
-}
-
-//! One copy of as many bytes as an exchange sends, in one buffer: the yardstick of "compositing at
-//! memory speed". Timed right after each exchange, so both see the same machine: this host's
-//! memory bandwidth drifts from second to second (one 16 MiB image copied back to back measured
-//! 0.45 to 0.95 ms within an hour), and a yardstick timed in other seconds than the runs it
-//! divides carries that drift into the ratio. One buffer of the whole size, not one image copied
-//! again, so the copy is of memory, as the exchange's is, not of what the last copy left in cache.
-class SentBytesCopy {
+//! A plain copy of one buffer of `bytes`, timed one copy at a time: the yardstick compositing is
+//! quoted against. The exchange harness sizes it to the bytes an exchange sends and times it right
+//! after each exchange, so both see the same machine: this host's memory bandwidth drifts from
+//! second to second (one 16 MiB image copied back to back measured 0.45 to 0.95 ms within an
+//! hour), and a yardstick timed in other seconds than the runs it divides carries that drift into
+//! the ratio. One buffer of the whole size, not one image copied again, so the copy is of memory,
+//! as the exchange's is, not of what the last copy left in cache.
+class TimedCopy {
  public:
-  explicit SentBytesCopy(std::uint64_t bytes)
-      : src_(std::size_t(bytes), std::byte{1}), dst_(std::size_t(bytes), std::byte{0}) {}
+  explicit TimedCopy(std::uint64_t bytes)
+      : src_(std::size_t(bytes), std::byte{1}), dst_(std::size_t(bytes), std::byte{0}) {
+    once();  // faults both buffers in
+  }
   double once() {
     const double t0 = nowSeconds();
     std::memcpy(dst_.data(), src_.data(), src_.size());
@@ -106,6 +96,14 @@ class SentBytesCopy {
  private:
   std::vector<std::byte> src_, dst_;
 };
+
+//! memcpy of one full image's bytes (16 B a pixel), back to back, median of `repeats`.
+double copySeconds(int width, int height, int repeats) {
+  TimedCopy copy(std::uint64_t(width) * std::uint64_t(height) * sizeof(Rgba));
+  std::vector<double> times;
+  for (int i = 0; i < repeats; ++i) times.push_back(copy.once());
+  return median(times);
+}
 
 }  // namespace
 
@@ -211,7 +209,7 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
     fillSynthetic(source[std::size_t(r)], r);
   }
   std::vector<double> maxima, walls, sentCopies;
-  std::optional<SentBytesCopy> sentCopy;  // sized by the warm-up run's traffic
+  std::optional<TimedCopy> sentCopy;  // sized by the warm-up run's traffic
   NodeArena arena(0, nodes);  // as the clusters run their nodes
   for (int i = 0; i <= repeats; ++i) {
     network.reset();
@@ -243,7 +241,6 @@ BinarySwapFigure measureCompositing(const std::string& name, int nodes, int widt
     for (std::uint64_t b : sent) f.bytesSent += b;
     if (i == 0) {
       sentCopy.emplace(f.bytesSent);
-      sentCopy->once();  // faults both buffers in
       continue;
     }
     double m = 0;

@@ -150,7 +150,7 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
   __m128 sample[kLanes];
 #if defined(KDSWAP_MARCH_AVX512VL)
   // Two samples a register (j in the low 256 bits, j + 1 in the high): the same operations per
-  // lane, fewer instructions (turbulence 256^3, P = 64: ~5% faster; the float format's pairs of
+  // lane, fewer instructions (turbulence 256^3, P = 64 and 512: 3-5% faster; the float format's pairs of
   // pairs, tried the same way, were ~5% slower). The zero-masking forms with every lane set are
   // the plain instructions; GCC 12's unmasked ones warn of an undefined pass-through operand.
   constexpr __mmask16 kAll16 = 0xFFFF;
