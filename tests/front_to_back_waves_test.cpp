@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/composite/registry.h"
+#include "core/render/front_transmittance.h"
 #include "test_support.h"
 
 using namespace kdswap;
@@ -112,4 +113,31 @@ TEST_CASE("front-to-back waves: fewer samples than independent nodes where matte
     CHECK(row.front().label == "render");
   }
   CHECK(maxAbsDifference(recorded.image, waves.image, waves.image.rect()) == 0.0f);
+}
+
+TEST_CASE("front transmittance: the spent pixels of a run of eight or fewer, as at() <= stop one by one") {
+  const Rect frame{3, 2, 21, 4};
+  FrontTransmittance front(frame);
+  // Partial images of opacity 0, 0.5, 0.9, 0.99 and 1 in a pattern, one pixel column each, so the
+  // product in front ends on both sides of the stop (0.01) and exactly at 0.
+  std::mt19937 random(7);
+  const float alphas[] = {0.0f, 0.5f, 0.9f, 0.99f, 1.0f};
+  for (int layer = 0; layer < 3; ++layer) {
+    Image partial(frame);
+    for (int y = frame.y; y < frame.bottom(); ++y)
+      for (int x = frame.x; x < frame.right(); ++x) partial.at(x, y).a = alphas[random() % 5];
+    front.addBehind(partial);
+  }
+  const float stop = 0.01f;
+  int spentSeen = 0, litSeen = 0;
+  for (int y = frame.y; y < frame.bottom(); ++y)
+    for (int x = frame.x; x < frame.right(); ++x)
+      for (int n = 1; n <= 8 && x + n <= frame.right(); ++n) {
+        int expected = 0;
+        for (int j = 0; j < n; ++j) expected |= int(front.at(x + j, y) <= stop) << j;
+        CHECK_MESSAGE(front.spentIn(x, y, n, stop) == expected, "pixel " << x << "," << y << " n " << n);
+        spentSeen += __builtin_popcount(unsigned(expected)), litSeen += n - __builtin_popcount(unsigned(expected));
+      }
+  CHECK(spentSeen > 0);
+  CHECK(litSeen > 0);
 }

@@ -12,6 +12,10 @@
 #include <cstddef>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #include "core/image/image.h"
 #include "core/image/rect.h"
 
@@ -26,6 +30,20 @@ class FrontTransmittance {
   //! The light left in front at pixel (x, y) of the frame.
   float at(int x, int y) const {
     return values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+  }
+
+  //! Bit j (j < n <= 8): the light in front of pixel (x + j, y) is spent, at(x + j, y) <= stop.
+  int spentIn(int x, int y, int n, float stop) const {
+    const float* t = &values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+#if defined(__SSE2__)
+    if (n == 8) {
+      const __m128 s = _mm_set1_ps(stop);
+      return _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(t), s)) | _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(t + 4), s)) << 4;
+    }
+#endif
+    int bits = 0;
+    for (int j = 0; j < n; ++j) bits |= int(t[j] <= stop) << j;
+    return bits;
   }
 
   //! Adds a brick rendered behind every brick added so far: its partial image's opacity
