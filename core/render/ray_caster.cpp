@@ -91,6 +91,14 @@ struct OwnedRun {
   }
 };
 
+//! Set bits of an 8-bit mask, without a library call where the build's baseline has no popcnt.
+constexpr int bitsSet8(int v) {
+  v = v - ((v >> 1) & 0x55);
+  v = (v & 0x33) + ((v >> 2) & 0x33);
+  return (v + (v >> 4)) & 0x0F;
+}
+static_assert(bitsSet8(0) == 0 && bitsSet8(0xFF) == 8 && bitsSet8(0xA5) == 4 && bitsSet8(0x80) == 1);
+
 }  // namespace
 
 RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
@@ -302,7 +310,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
                 // once per brick whose rectangle holds it).
                 const int spent = front_ ? front_->spentIn(x0, y, n, march_.stopTransmittance) : 0;
                 live = ((1 << n) - 1) & ~spent;
-                const int stopped = __builtin_popcount(unsigned(spent));
+                const int stopped = bitsSet8(spent);
                 local.rays += std::uint64_t(stopped), local.occluded += std::uint64_t(stopped);
                 for (int j = 0; j < 8; ++j) occludedFrom[j] = OcclusionGrid::kNever;
               } else {
