@@ -141,3 +141,34 @@ TEST_CASE("front transmittance: the spent pixels of a run of eight or fewer, as 
   CHECK(spentSeen > 0);
   CHECK(litSeen > 0);
 }
+
+TEST_CASE("front transmittance: a brick rendered with it dims each pixel as addBehind of its image would") {
+  Fixture& f = fixture();
+  const View view{};
+  const Camera camera(view, glm::vec3(0.0f), glm::vec3(f.whole.volumeDims() - 1) * f.whole.spacing(), 48, 40);
+  RenderSettings settings;
+  settings.earlyTermination = 0.9f;
+  const TransferTable table(f.tf, settings.stepVoxels);
+  // Light already dimmed in front, unevenly: some pixels spent (their rays are skipped), some not.
+  FrontTransmittance rendered(camera.frame()), reference(camera.frame());
+  Image inFront(camera.frame());
+  std::mt19937 random(3);
+  const float alphas[] = {0.0f, 0.3f, 0.95f};
+  for (int y = 0; y < camera.frame().h; ++y)
+    for (int x = 0; x < camera.frame().w; ++x) inFront.at(x, y).a = alphas[random() % 3];
+  rendered.addBehind(inFront);
+  reference.addBehind(inFront);
+  const RayCaster caster(f.whole, table, settings, f.range(), nullptr, nullptr, &rendered);
+  RenderCounters counters;
+  const Image image = caster.render(camera, counters);
+  REQUIRE(counters.samples > 0);
+  REQUIRE(counters.occluded > 0);  // spent pixels took no ray
+  reference.addBehind(image);
+  int dimmed = 0;
+  for (int y = 0; y < camera.frame().h; ++y)
+    for (int x = 0; x < camera.frame().w; ++x) {
+      CHECK_MESSAGE(rendered.at(x, y) == reference.at(x, y), "pixel " << x << "," << y);
+      dimmed += image.rect().contains(x, y) && image.at(x, y).a > 0.0f;
+    }
+  CHECK(dimmed > 100);
+}

@@ -38,8 +38,8 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
   tbb::parallel_for_each(ready.begin(), ready.end(), [&](std::size_t i, tbb::feeder<std::size_t>& feeder) {
     const int rank = order[i];
     RenderedBrick& r = rendered[std::size_t(rank)];
-    r = renderOwnBrick(nodes[std::size_t(rank)], plan, &front);
-    front.addBehind(r.image);  // only bricks waiting for this one read these pixels
+    r = renderOwnBrick(nodes[std::size_t(rank)], plan, &front);  // dims `front` where it rendered
+    // (only bricks waiting for this one read those pixels)
     if (plan.nodesRendered) plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // progress display
     // The last brick in front to finish releases the one behind; acq_rel orders every earlier
     // brick's writes to `front` before its reads.

@@ -186,7 +186,7 @@ Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan) {
   return RayCaster::screenRect(*emptySpaceFor(node.brickEmptySpace, node.brick, plan), node.brick.spacing(), plan.camera);
 }
 
-RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, const FrontTransmittance* front) {
+RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransmittance* front) {
   RenderedBrick out;
   out.start = nowSeconds();
   const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,

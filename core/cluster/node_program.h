@@ -55,7 +55,7 @@ struct RenderedBrick {
 //! Renders the node's own brick for `plan` (with its occlusion map, if any, and `front` in
 //! front-to-back waves). The node's first step each frame; in waves the cluster calls it for every
 //! node in visibility order before the nodes composite.
-RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, const FrontTransmittance* front = nullptr);
+RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransmittance* front = nullptr);
 
 //! The screen rectangle renderOwnBrick's image will cover (RayCaster::screenRect of the node's brick).
 Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan);

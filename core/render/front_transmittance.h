@@ -32,6 +32,11 @@ class FrontTransmittance {
     return values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
   }
 
+  //! The light at pixel (x, y), for a brick that renders it to dim in place.
+  float& lightAt(int x, int y) {
+    return values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+  }
+
   //! Bit j (j < n <= 8): the light in front of pixel (x + j, y) is spent, at(x + j, y) <= stop.
   int spentIn(int x, int y, int n, float stop) const {
     const float* t = &values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];

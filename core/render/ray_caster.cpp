@@ -19,6 +19,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "core/render/ray_setup.h"
+#include "core/render/specular_table.h"
 #include "core/render/trilinear.h"
 #include "core/render/voxel_ray.h"
 #include "core/util/check.h"
@@ -103,7 +104,7 @@ static_assert(bitsSet8(0) == 0 && bitsSet8(0xFF) == 8 && bitsSet8(0xA5) == 4 && 
 
 RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
                      const OcclusionMap* occlusion, std::shared_ptr<const EmptySpaceMap> emptySpace,
-                     const FrontTransmittance* front)
+                     FrontTransmittance* front)
     : brick_(brick),
       table_(table),
       settings_(settings),
@@ -113,19 +114,18 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
                              : std::make_shared<const EmptySpaceMap>(brick, table, scale_, bias_, settings.skipEmptySpace)),
       occlusion_(occlusion),
       front_(front),
+      specular_(specularTableFor(settings.shininess)),
       march_{ShadingParameters{}, VoxelAddressing(brick)},
       // The SIMD march indexes voxels with 32-bit offsets.
       marchFunction_(brick.stored().count() < (std::int64_t(1) << 31) ? selectedMarchFunction() : &marchScalar) {
   KDSWAP_CHECK(emptySpace_->cellCount() == brick.cellCount());  // a map made for another brick
-  specular_.resize(kSpecularEntries + 1);
-  for (int i = 0; i <= kSpecularEntries; ++i) specular_[i] = std::pow(float(i) / kSpecularEntries, settings.shininess);
   ShadingParameters& shading = march_.shading;
   shading.table = &table_;
   const glm::vec2 stored = brick.storage().storedScaleBias(scale_, bias_);  // the shader reads stored values
   shading.scale = stored.x, shading.bias = stored.y;
   shading.shading = settings.shading;
   shading.ambient = settings.ambient, shading.diffuse = settings.diffuse, shading.specular = settings.specular;
-  shading.specularTable = specular_.data();
+  shading.specularTable = specular_->data();
   march_.storedLo = brick.stored().lo;
   march_.reach = emptySpace_->reachData();
   march_.cellLo = brick.cellLo();
@@ -284,17 +284,26 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
           std::array<RaySegment, kBatch> segments;
           std::array<Rgba, kBatch> colours;
           std::array<Rgba*, kBatch> pixels;
+          std::array<float*, kBatch> light;  // waves: the light in front of each queued pixel
           std::size_t pending = 0;
           RayLanes8 lanes;
           const auto march = [&] {
             marchFunction_(march_, segments.data(), pending, colours.data(), local.samples);
             for (std::size_t i = 0; i < pending; ++i) *pixels[i] = colours[i];
+            // Waves: this brick's own transmittance dims the light it leaves for the bricks behind
+            // (as addBehind would after the brick, without a second pass over its rectangle;
+            // pixels without a ray have opacity 0 and would keep their light exactly).
+            if (front_)
+              for (std::size_t i = 0; i < pending; ++i) *light[i] *= 1.0f - colours[i].a;
             pending = 0;
           };
           // segments[pending] now holds pixel (x, y)'s segment: queue it for the next batch.
           const auto queue = [&](int x, int y) {
             // Waves: T_front * T_own <= stop  <=>  T_own <= stop / T_front (T_front > stop here).
-            if (front_) segments[pending].stopTransmittance = march_.stopTransmittance / front_->at(x, y);
+            if (front_) {
+              light[pending] = &front_->lightAt(x, y);
+              segments[pending].stopTransmittance = march_.stopTransmittance / *light[pending];
+            }
             pixels[pending] = &image.at(x, y);
             if (++pending == kBatch) march();
           };

@@ -38,10 +38,11 @@ class RayCaster {
   //! brick's map under this table, mapping and settings (kept across frames by an EmptySpaceCache);
   //! otherwise the caster builds its own. With `front` (front-to-back waves), each ray stops where
   //! the light left in front of the brick times its own transmittance reaches the termination
-  //! stop, and pixels already stopped in front take no ray.
+  //! stop, pixels already stopped in front take no ray, and render multiplies each pixel's light
+  //! by the brick's transmittance there (as FrontTransmittance::addBehind of its image would).
   RayCaster(const Brick& brick, const TransferTable& table, const RenderSettings& settings, glm::vec2 valueRange,
             const OcclusionMap* occlusion = nullptr, std::shared_ptr<const EmptySpaceMap> emptySpace = nullptr,
-            const FrontTransmittance* front = nullptr);
+            FrontTransmittance* front = nullptr);
 
   //! The screen rectangle a brick's partial image covers: its visible box (under `emptySpace`,
   //! the brick's map) projected; empty when nothing in it is visible.
@@ -88,8 +89,8 @@ class RayCaster {
   float scale_, bias_;   //!< normalised scalar = value * scale + bias
   std::shared_ptr<const EmptySpaceMap> emptySpace_;  //!< invisible macro cells under this transfer function
   const OcclusionMap* occlusion_;
-  const FrontTransmittance* front_;
-  std::vector<float> specular_;  //!< pow(x, shininess) tabulated over [0, 1]
+  FrontTransmittance* front_;
+  std::shared_ptr<const std::vector<float>> specular_;  //!< pow(x, shininess) over [0, 1] (specular_table.h)
   MarchContext march_;           //!< the brick's constants for the sample loop
   MarchFunction marchFunction_;  //!< scalar or SIMD: equal results
 };

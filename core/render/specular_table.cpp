@@ -1,0 +1,43 @@
+// SpecularTable: made once per exponent, kept in a small most-recent-first list.
+#include "core/render/specular_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <mutex>
+#include <utility>
+
+#include "core/render/sample_shader.h"
+
+namespace kdswap {
+namespace {
+
+constexpr std::size_t kKept = 4;  //!< exponents kept (the GUI's slider may pass through many)
+
+struct Kept {
+  std::uint32_t bits;  //!< the exponent's bit pattern: equal bits, equal table
+  std::shared_ptr<const std::vector<float>> table;
+};
+
+}  // namespace
+
+std::shared_ptr<const std::vector<float>> specularTableFor(float shininess) {
+  static std::mutex mutex;
+  static std::vector<Kept> kept;  // most recent first
+  std::uint32_t bits;
+  std::memcpy(&bits, &shininess, sizeof bits);
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto found = std::find_if(kept.begin(), kept.end(), [&](const Kept& k) { return k.bits == bits; });
+  if (found != kept.end()) {
+    std::rotate(kept.begin(), found, found + 1);
+    return kept.front().table;
+  }
+  auto table = std::make_shared<std::vector<float>>(kSpecularEntries + 1);
+  for (int i = 0; i <= kSpecularEntries; ++i) (*table)[std::size_t(i)] = std::pow(float(i) / kSpecularEntries, shininess);
+  kept.insert(kept.begin(), Kept{bits, table});
+  if (kept.size() > kKept) kept.pop_back();
+  return table;
+}
+
+}  // namespace kdswap
