@@ -29,17 +29,17 @@ class FrontTransmittance {
 
   //! The light left in front at pixel (x, y) of the frame.
   float at(int x, int y) const {
-    return values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+    return values_[offset(x, y)];
   }
 
   //! The light at pixel (x, y), for a brick that renders it to dim in place.
   float& lightAt(int x, int y) {
-    return values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+    return values_[offset(x, y)];
   }
 
   //! Bit j (j < n <= 8): the light in front of pixel (x + j, y) is spent, at(x + j, y) <= stop.
   int spentIn(int x, int y, int n, float stop) const {
-    const float* t = &values_[std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x)];
+    const float* t = &values_[offset(x, y)];
 #if defined(__SSE2__)
     if (n == 8) {
       const __m128 s = _mm_set1_ps(stop);
@@ -52,10 +52,16 @@ class FrontTransmittance {
   }
 
   //! Adds a brick rendered behind every brick added so far: its partial image's opacity
-  //! (premultiplied "over" image: alpha = 1 - its transmittance) dims the pixels it covers.
+  //! (premultiplied "over" image: alpha = 1 - its transmittance) dims the pixels it covers. The
+  //! waves' casters dim in place as they render (lightAt), to the same bits; this is the whole-image
+  //! form they are tested against.
   void addBehind(const Image& partial);
 
  private:
+  std::size_t offset(int x, int y) const {
+    return std::size_t(y - frame_.y) * std::size_t(frame_.w) + std::size_t(x - frame_.x);
+  }
+
   Rect frame_;
   std::vector<float> values_;
 };
