@@ -172,3 +172,64 @@ TEST_CASE("front transmittance: a brick rendered with it dims each pixel as addB
     }
   CHECK(dimmed > 100);
 }
+
+TEST_CASE("ray caster: a brick rendered region by region equals it rendered whole, pixels and counters") {
+  Fixture& f = fixture();
+  RenderSettings settings;
+  settings.earlyTermination = 0.9f;
+  const TransferTable table(f.tf, settings.stepVoxels);
+  const RayCaster caster(f.whole, table, settings, f.range());
+  std::mt19937 rng(17);
+  for (const View& view : test::randomViews(rng, 3)) {
+    const Camera camera(view, glm::vec3(0.0f), glm::vec3(f.whole.volumeDims() - 1) * f.whole.spacing(), 53, 47);
+    RenderCounters whole;
+    const Image reference = caster.render(camera, whole);
+    REQUIRE(caster.screenRect(camera) == reference.rect());
+    REQUIRE(whole.samples > 0);
+    // Regions of a ragged grid, in a shuffled order: sizes not multiples of eight, some a pixel wide.
+    const Rect rect = reference.rect();
+    std::vector<Rect> regions;
+    for (int y = rect.y; y < rect.bottom();) {
+      const int h = std::min(rect.bottom() - y, 1 + int(rng() % 13));
+      for (int x = rect.x; x < rect.right();) {
+        const int w = std::min(rect.right() - x, 1 + int(rng() % 19));
+        regions.push_back(Rect{x, y, w, h});
+        x += w;
+      }
+      y += h;
+    }
+    std::shuffle(regions.begin(), regions.end(), rng);
+    Image pieced(rect);
+    RenderCounters counters;
+    for (const Rect& region : regions) caster.renderRegion(camera, region, pieced, counters);
+    CHECK(maxAbsDifference(pieced, reference, rect) == 0.0f);
+    CHECK(counters.samples == whole.samples);
+    CHECK(counters.rays == whole.rays);
+    CHECK(counters.occluded == whole.occluded);
+  }
+}
+
+TEST_CASE("front-to-back waves: the same image bits with one, two and four worker threads") {
+  // Pieces of a frame run in whatever order the threads take them; each pixel's bricks still
+  // render it nearest first, so the light each reads, and the image, cannot depend on the order.
+  std::mt19937 rng(63);
+  const std::vector<View> views = test::randomViews(rng, 3);
+  for (int nodes : {8, 64}) {
+    std::vector<Image> first;
+    for (int threads : {1, 2, 4}) {
+      ClusterOptions options;
+      options.nodes = nodes;
+      options.threads = threads;
+      VirtualCluster cluster(*fixture().volume, options);
+      for (std::size_t v = 0; v < views.size(); ++v) {
+        const FrameResult frame = cluster.renderFrame(wavesRequest(views[v], 97, 83, 0.9f));
+        if (threads == 1) {
+          first.push_back(frame.image);
+          continue;
+        }
+        CHECK_MESSAGE(maxAbsDifference(frame.image, first[v], first[v].rect()) == 0.0f,
+                      describe(nodes, "binary-swap", views[v], 97, 83) << " threads " << threads);
+      }
+    }
+  }
+}

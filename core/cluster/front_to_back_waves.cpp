@@ -1,16 +1,37 @@
-// Front-to-back waves: a dependency graph over the bricks (brick j waits for every brick nearer
-// the eye whose screen rectangle meets its own), run as tasks that release their dependents.
+// Front-to-back waves: a dependency graph over pieces of the bricks' screen rectangles (one
+// cell of a screen grid each; a piece waits for the pieces in front that share a pixel with it),
+// run as tasks that release their dependents.
 #include "core/cluster/front_to_back_waves.h"
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
+#include <mutex>
 
 #include <oneapi/tbb/parallel_for_each.h>
 
+#include "core/cluster/screen_piece_graph.h"
 #include "core/render/front_transmittance.h"
+#include "core/util/clock.h"
 #include "core/util/error.h"
 
 namespace kdswap {
+namespace {
+
+// Screen cells of the waves' pieces, in pixels: small enough that a brick's cell rarely waits for
+// bricks in front that only touch its rectangle elsewhere, large enough that a piece's rays fill
+// the caster's batches and the graph stays small (a 512^2 frame at P = 64: about 1500 pieces).
+constexpr int kWaveCell = 32;
+
+//! One brick's state shared by its pieces: its caster and image are made by the first piece to
+//! run, and the last piece to finish counts the brick as rendered.
+struct BrickInWaves {
+  std::once_flag made;
+  std::unique_ptr<RayCaster> caster;
+  std::atomic<int> piecesLeft{0};
+};
+
+}  // namespace
 
 std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const FramePlan& plan) {
   const std::vector<int>& order = plan.order.frontToBack;  // ranks, nearest brick first
@@ -19,34 +40,70 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
   std::vector<Rect> rects(n);
   for (std::size_t i = 0; i < n; ++i) rects[i] = ownBrickScreenRect(nodes[std::size_t(order[i])], plan);
 
-  // after[i]: the bricks (positions in `order`) that wait for brick i; waiting[j]: how many brick
-  // j still waits for; waitsFor[j]: their ranks, for the modelled time (FrameStats::renderSpan).
+  // waitsFor[j]: the ranks of the bricks nearer the eye whose rectangles meet brick j's, for the
+  // modelled time (FrameStats::renderSpan: nodes of a real machine wait for whole bricks).
   // Pairs are compared once per frame: P^2 / 2 rectangle tests (~1 ms at 1024).
-  std::vector<std::vector<std::size_t>> after(n);
   std::vector<std::vector<int>> waitsFor(n);
-  std::unique_ptr<std::atomic<int>[]> waiting(new std::atomic<int>[n]);
-  std::vector<std::size_t> ready;
-  for (std::size_t j = 0; j < n; ++j) {
+  for (std::size_t j = 0; j < n; ++j)
     if (!rects[j].empty())
       for (std::size_t i = 0; i < j; ++i)
-        if (!rects[i].intersect(rects[j]).empty()) after[i].push_back(j), waitsFor[j].push_back(order[i]);
-    waiting[j].store(int(waitsFor[j].size()), std::memory_order_relaxed);
-    if (waitsFor[j].empty()) ready.push_back(j);
-  }
+        if (!rects[i].intersect(rects[j]).empty()) waitsFor[j].push_back(order[i]);
+
+  const ScreenPieceGraph graph(rects, plan.frame(), kWaveCell);
+  const std::vector<ScreenPiece>& pieces = graph.pieces();
+  std::unique_ptr<BrickInWaves[]> bricks(new BrickInWaves[n]);
+  for (std::size_t i = 0; i < n; ++i) bricks[i].piecesLeft.store(graph.piecesOf(i), std::memory_order_relaxed);
+  std::unique_ptr<std::atomic<int>[]> waiting(new std::atomic<int>[pieces.size()]);
+  for (std::size_t p = 0; p < pieces.size(); ++p) waiting[p].store(graph.waitsFor(p), std::memory_order_relaxed);
+  struct PieceTimes {
+    RenderCounters counters;
+    double start = 0.0, end = 0.0;
+  };
+  std::vector<PieceTimes> times(pieces.size());
 
   FrontTransmittance front(plan.frame());
-  tbb::parallel_for_each(ready.begin(), ready.end(), [&](std::size_t i, tbb::feeder<std::size_t>& feeder) {
-    const int rank = order[i];
-    RenderedBrick& r = rendered[std::size_t(rank)];
-    r = renderOwnBrick(nodes[std::size_t(rank)], plan, &front);  // dims `front` where it rendered
-    // (only bricks waiting for this one read those pixels)
-    if (plan.nodesRendered) plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // progress display
-    // The last brick in front to finish releases the one behind; acq_rel orders every earlier
-    // brick's writes to `front` before its reads.
-    for (std::size_t j : after[i])
-      if (waiting[j].fetch_sub(1, std::memory_order_acq_rel) == 1) feeder.add(j);
+  const double begin = nowSeconds();
+  const std::vector<std::size_t> ready = graph.ready();
+  tbb::parallel_for_each(ready.begin(), ready.end(), [&](std::size_t p, tbb::feeder<std::size_t>& feeder) {
+    const ScreenPiece& piece = pieces[p];
+    const std::size_t rank = std::size_t(order[piece.brick]);
+    BrickInWaves& brick = bricks[piece.brick];
+    times[p].start = nowSeconds();
+    std::call_once(brick.made, [&] {
+      brick.caster = ownBrickCaster(nodes[rank], plan, &front);
+      rendered[rank].image = Image(rects[piece.brick]);
+    });
+    // Dims `front` where it rendered (only pieces waiting for this one read those pixels).
+    brick.caster->renderRegion(plan.camera, piece.rect, rendered[rank].image, times[p].counters);
+    times[p].end = nowSeconds();
+    if (brick.piecesLeft.fetch_sub(1, std::memory_order_acq_rel) == 1 && plan.nodesRendered)
+      plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // progress display
+    // The last piece in front to finish releases the one behind; acq_rel orders every earlier
+    // piece's writes to `front` before its reads.
+    for (const std::size_t* q = graph.dependentsBegin(p); q != graph.dependentsEnd(p); ++q)
+      if (waiting[*q].fetch_sub(1, std::memory_order_acq_rel) == 1) feeder.add(*q);
   });
-  for (std::size_t j = 0; j < n; ++j) rendered[std::size_t(order[j])].renderedAfter = std::move(waitsFor[j]);
+
+  // Per brick: its pieces' counters summed, its time from its first piece's start to its last's end.
+  for (std::size_t i = 0; i < n; ++i) {
+    RenderedBrick& r = rendered[std::size_t(order[i])];
+    r.start = r.end = begin;
+    r.renderedAfter = std::move(waitsFor[i]);
+    if (graph.piecesOf(i) == 0 && plan.nodesRendered) plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);
+  }
+  std::vector<bool> seen(n, false);
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const std::size_t i = pieces[p].brick;
+    RenderedBrick& r = rendered[std::size_t(order[i])];
+    const PieceTimes& t = times[p];
+    r.start = seen[i] ? std::min(r.start, t.start) : t.start;
+    r.end = seen[i] ? std::max(r.end, t.end) : t.end;
+    seen[i] = true;
+    r.counters.rays += t.counters.rays;
+    r.counters.samples += t.counters.samples;
+    r.counters.occluded += t.counters.occluded;
+    r.counters.seconds += t.counters.seconds;
+  }
   return rendered;
 }
 

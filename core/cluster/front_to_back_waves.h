@@ -1,8 +1,9 @@
 // Front-to-back waves (RenderSettings::frontToBackWaves): every node's brick rendered before the
-// nodes composite, each brick after the bricks in front of it whose screen rectangles overlap its
-// own, so it reads, at each of its pixels, the light those bricks left (FrontTransmittance).
-// Bricks that share no pixel render at once; a pixel's bricks render one after another, nearest
-// first, so its transmittance is multiplied in the same order every frame (the same image bits).
+// nodes composite, each brick's pixels after those of the bricks in front of it, so it reads, at
+// each of its pixels, the light those bricks left (FrontTransmittance). Bricks render in pieces,
+// one screen cell each (ScreenPieceGraph): pieces that share no pixel render at once; a pixel's
+// bricks render it one after another, nearest first, so its transmittance is multiplied in the
+// same order every frame (the same image bits).
 #pragma once
 
 #include <vector>

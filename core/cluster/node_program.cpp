@@ -186,12 +186,15 @@ Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan) {
   return RayCaster::screenRect(*emptySpaceFor(node.brickEmptySpace, node.brick, plan), node.brick.spacing(), plan.camera);
 }
 
+std::unique_ptr<RayCaster> ownBrickCaster(NodeState& node, const FramePlan& plan, FrontTransmittance* front) {
+  return std::make_unique<RayCaster>(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
+                                     emptySpaceFor(node.brickEmptySpace, node.brick, plan), front);
+}
+
 RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransmittance* front) {
   RenderedBrick out;
   out.start = nowSeconds();
-  const RayCaster caster(node.brick, plan.table, plan.request.settings, plan.valueRange, plan.occlusion,
-                         emptySpaceFor(node.brickEmptySpace, node.brick, plan), front);
-  out.image = caster.render(plan.camera, out.counters);
+  out.image = ownBrickCaster(node, plan, front)->render(plan.camera, out.counters);
   out.end = nowSeconds();
   return out;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "core/cluster/frame_request.h"
@@ -49,13 +50,17 @@ struct RenderedBrick {
   Image image;
   RenderCounters counters;
   double start = 0.0, end = 0.0;
-  std::vector<int> renderedAfter;  //!< waves: the ranks this brick waited for (NodeReport::renderedAfter)
+  std::vector<int> renderedAfter;  //!< waves: the ranks in front of this brick (NodeReport::renderedAfter)
 };
 
 //! Renders the node's own brick for `plan` (with its occlusion map, if any, and `front` in
 //! front-to-back waves). The node's first step each frame; in waves the cluster calls it for every
 //! node in visibility order before the nodes composite.
 RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransmittance* front = nullptr);
+
+//! The caster renderOwnBrick uses: waves make it once a frame and render the brick one screen
+//! cell at a time with it (RayCaster::renderRegion). It keeps references to node and plan.
+std::unique_ptr<RayCaster> ownBrickCaster(NodeState& node, const FramePlan& plan, FrontTransmittance* front);
 
 //! The screen rectangle renderOwnBrick's image will cover (RayCaster::screenRect of the node's brick).
 Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan);

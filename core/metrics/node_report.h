@@ -53,8 +53,10 @@ struct NodeReport {
     double start = 0, end = 0;  //!< wall interval of this brick's ray casting (same clock)
   };
   std::vector<BrickRender> bricks;
-  //! Front-to-back waves: the ranks whose renders this node's render waited for (the bricks nearer the
-  //! eye whose screen rectangles meet its own). Empty for the paper's independent nodes.
+  //! Front-to-back waves: the ranks whose bricks are nearer the eye with screen rectangles that meet
+  //! this one's. The modelled time has each node wait for their whole renders, as separate machines
+  //! would; in process each screen cell waits only for those bricks' pieces in that cell, so on the
+  //! wall clock the renders may overlap. Empty for the paper's independent nodes.
   std::vector<int> renderedAfter;
 
   //! Moves every time to a clock starting at `origin` (absolute seconds): the frame's start.

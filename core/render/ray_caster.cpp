@@ -259,105 +259,19 @@ Rect RayCaster::screenRect(const EmptySpaceMap& emptySpace, const glm::vec3& spa
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
   if (!emptySpace_->anyVisible()) return Image{};
-  const glm::vec3 spacing = brick_.spacing();
-  const Rect rect = screenRect(*emptySpace_, spacing, camera);
+  const Rect rect = screenRect(*emptySpace_, brick_.spacing(), camera);
   Image image(rect);
   if (rect.empty()) return image;
-  const ClipBox clip = clipBox();
-  const VoxelRay::Scale scale(spacing, settings_);
-  const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera, scale.step) : 0;
-  const bool simdSetup = raySetup8Available();
-  const RaySetupConstants setup{camera.basis(),     scale.inverseSpacing, scale.inverseStep,
-                                scale.jitter,       scale.phaseShift,     clip.lo,
-                                clip.hi,            clip.hiMagnitude,     glm::vec3(brick_.owned().lo),
-                                glm::vec3(brick_.owned().hi), scale.step};
   tbb::combinable<RenderCounters> perThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
   // this thread's stack and would inflate this node's timings).
   tbb::this_task_arena::isolate([&] {
-    tbb::parallel_for(
-        tbb::blocked_range2d<int>(rect.y, rect.bottom(), kTileSize, rect.x, rect.right(), kTileSize),
-        [&](const tbb::blocked_range2d<int>& tile) {
-          const double start = nowSeconds();
-          RenderCounters& local = perThread.local();
-          // The tile's rays that reach owned samples, marched in one batch; other pixels stay clear.
-          std::array<RaySegment, kBatch> segments;
-          std::array<Rgba, kBatch> colours;
-          std::array<Rgba*, kBatch> pixels;
-          std::array<float*, kBatch> light;  // waves: the light in front of each queued pixel
-          std::size_t pending = 0;
-          RayLanes8 lanes;
-          const auto march = [&] {
-            marchFunction_(march_, segments.data(), pending, colours.data(), local.samples);
-            for (std::size_t i = 0; i < pending; ++i) *pixels[i] = colours[i];
-            // Waves: this brick's own transmittance dims the light it leaves for the bricks behind
-            // (as addBehind would after the brick, without a second pass over its rectangle;
-            // pixels without a ray have opacity 0 and would keep their light exactly).
-            if (front_)
-              for (std::size_t i = 0; i < pending; ++i) *light[i] *= 1.0f - colours[i].a;
-            pending = 0;
-          };
-          // segments[pending] now holds pixel (x, y)'s segment: queue it for the next batch.
-          const auto queue = [&](int x, int y) {
-            // Waves: T_front * T_own <= stop  <=>  T_own <= stop / T_front (T_front > stop here).
-            if (front_) {
-              light[pending] = &front_->lightAt(x, y);
-              segments[pending].stopTransmittance = march_.stopTransmittance / *light[pending];
-            }
-            pixels[pending] = &image.at(x, y);
-            if (++pending == kBatch) march();
-          };
-          // Runs of eight pixels: their rays are set up together where AVX2 allows (ray_setup.h).
-          for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-            for (int x0 = tile.cols().begin(); x0 < tile.cols().end(); x0 += 8) {
-              const int n = std::min(8, tile.cols().end() - x0);
-              long occludedFrom[8];
-              int live = 0;  // bit j: pixel x0 + j needs its ray set up
-              if (occlusion_ == nullptr) {
-                // Only the light in front (waves) can stop a pixel's ray before this brick: eight
-                // pixels tested at once, no branch per pixel (a 64-node frame tests each pixel
-                // once per brick whose rectangle holds it).
-                const int spent = front_ ? front_->spentIn(x0, y, n, march_.stopTransmittance) : 0;
-                live = ((1 << n) - 1) & ~spent;
-                const int stopped = bitsSet8(spent);
-                local.rays += std::uint64_t(stopped), local.occluded += std::uint64_t(stopped);
-                for (int j = 0; j < 8; ++j) occludedFrom[j] = OcclusionGrid::kNever;
-              } else {
-                for (int j = 0; j < n; ++j) {
-                  occludedFrom[j] = occlusion_->occludedFrom(x0 + j, y);
-                  if (front_ && front_->at(x0 + j, y) <= march_.stopTransmittance) occludedFrom[j] = 0;  // stopped in front
-                  if (occludedFrom[j] <= firstPossible)  // ends before the brick: no ray to set up
-                    ++local.rays, ++local.occluded;
-                  else
-                    live |= 1 << j;
-                }
-              }
-              if (live == 0) continue;
-              if (simdSetup) {
-                setupRays8(setup, x0, y, lanes);
-                for (int bits = live & lanes.crosses; bits != 0; bits &= bits - 1) {
-                  const int j = __builtin_ctz(bits);
-                  const glm::vec3 o(lanes.ox[j], lanes.oy[j], lanes.oz[j]), d(lanes.dx[j], lanes.dy[j], lanes.dz[j]);
-                  const bool window = (lanes.windows >> j) & 1;
-                  if (segmentFromClip(o, d, glm::vec3(lanes.ix[j], lanes.iy[j], lanes.iz[j]), scale.step,
-                                      lanes.phase[j], scale.inverseStep, lanes.firstIndex[j], lanes.lastIndex[j],
-                                      -glm::vec3(lanes.wx[j], lanes.wy[j], lanes.wz[j]), local, occludedFrom[j],
-                                      segments[pending], window ? lanes.nearOwned[j] : -1,
-                                      window ? lanes.farOwned[j] : -1))
-                    queue(x0 + j, y);
-                }
-                continue;
-              }
-              for (int bits = live; bits != 0; bits &= bits - 1) {
-                const int j = __builtin_ctz(bits);
-                const Ray ray = camera.ray(x0 + j, y);
-                if (segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom[j], segments[pending]))
-                  queue(x0 + j, y);
-              }
-            }
-          if (pending > 0) march();
-          local.seconds += nowSeconds() - start;
-        });
+    tbb::parallel_for(tbb::blocked_range2d<int>(rect.y, rect.bottom(), kTileSize, rect.x, rect.right(), kTileSize),
+                      [&](const tbb::blocked_range2d<int>& tile) {
+                        const int x = tile.cols().begin(), y = tile.rows().begin();
+                        const Rect region{x, y, tile.cols().end() - x, tile.rows().end() - y};
+                        renderRegion(camera, region, image, perThread.local());
+                      });
   });
   perThread.combine_each([&](const RenderCounters& c) {
     counters.rays += c.rays;
@@ -366,6 +280,101 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters) const {
     counters.seconds += c.seconds;
   });
   return image;
+}
+
+Rect RayCaster::screenRect(const Camera& camera) const {
+  return emptySpace_->anyVisible() ? screenRect(*emptySpace_, brick_.spacing(), camera) : Rect{};
+}
+
+void RayCaster::renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& local) const {
+  KDSWAP_CHECK(image.rect().contains(region));
+  if (region.empty() || !emptySpace_->anyVisible()) return;
+  const double start = nowSeconds();
+  const glm::vec3 spacing = brick_.spacing();
+  const ClipBox clip = clipBox();
+  const VoxelRay::Scale scale(spacing, settings_);
+  const long firstPossible = occlusion_ ? firstLatticeIndexBound(camera, scale.step) : 0;
+  const bool simdSetup = raySetup8Available();
+  const RaySetupConstants setup{camera.basis(),     scale.inverseSpacing, scale.inverseStep,
+                                scale.jitter,       scale.phaseShift,     clip.lo,
+                                clip.hi,            clip.hiMagnitude,     glm::vec3(brick_.owned().lo),
+                                glm::vec3(brick_.owned().hi), scale.step};
+  // The region's rays that reach owned samples, marched in one batch; other pixels stay clear.
+  std::array<RaySegment, kBatch> segments;
+  std::array<Rgba, kBatch> colours;
+  std::array<Rgba*, kBatch> pixels;
+  std::array<float*, kBatch> light;  // waves: the light in front of each queued pixel
+  std::size_t pending = 0;
+  RayLanes8 lanes;
+  const auto march = [&] {
+    marchFunction_(march_, segments.data(), pending, colours.data(), local.samples);
+    for (std::size_t i = 0; i < pending; ++i) *pixels[i] = colours[i];
+    // Waves: this brick's own transmittance dims the light it leaves for the bricks behind
+    // (as addBehind would after the brick, without a second pass over its rectangle;
+    // pixels without a ray have opacity 0 and would keep their light exactly).
+    if (front_)
+      for (std::size_t i = 0; i < pending; ++i) *light[i] *= 1.0f - colours[i].a;
+    pending = 0;
+  };
+  // segments[pending] now holds pixel (x, y)'s segment: queue it for the next batch.
+  const auto queue = [&](int x, int y) {
+    // Waves: T_front * T_own <= stop  <=>  T_own <= stop / T_front (T_front > stop here).
+    if (front_) {
+      light[pending] = &front_->lightAt(x, y);
+      segments[pending].stopTransmittance = march_.stopTransmittance / *light[pending];
+    }
+    pixels[pending] = &image.at(x, y);
+    if (++pending == kBatch) march();
+  };
+  // Runs of eight pixels: their rays are set up together where AVX2 allows (ray_setup.h).
+  for (int y = region.y; y < region.bottom(); ++y)
+    for (int x0 = region.x; x0 < region.right(); x0 += 8) {
+      const int n = std::min(8, region.right() - x0);
+      long occludedFrom[8];
+      int live = 0;  // bit j: pixel x0 + j needs its ray set up
+      if (occlusion_ == nullptr) {
+        // Only the light in front (waves) can stop a pixel's ray before this brick: eight
+        // pixels tested at once, no branch per pixel (a 64-node frame tests each pixel
+        // once per brick whose rectangle holds it).
+        const int spent = front_ ? front_->spentIn(x0, y, n, march_.stopTransmittance) : 0;
+        live = ((1 << n) - 1) & ~spent;
+        const int stopped = bitsSet8(spent);
+        local.rays += std::uint64_t(stopped), local.occluded += std::uint64_t(stopped);
+        for (int j = 0; j < 8; ++j) occludedFrom[j] = OcclusionGrid::kNever;
+      } else {
+        for (int j = 0; j < n; ++j) {
+          occludedFrom[j] = occlusion_->occludedFrom(x0 + j, y);
+          if (front_ && front_->at(x0 + j, y) <= march_.stopTransmittance) occludedFrom[j] = 0;  // stopped in front
+          if (occludedFrom[j] <= firstPossible)  // ends before the brick: no ray to set up
+            ++local.rays, ++local.occluded;
+          else
+            live |= 1 << j;
+        }
+      }
+      if (live == 0) continue;
+      if (simdSetup) {
+        setupRays8(setup, x0, y, lanes);
+        for (int bits = live & lanes.crosses; bits != 0; bits &= bits - 1) {
+          const int j = __builtin_ctz(bits);
+          const glm::vec3 o(lanes.ox[j], lanes.oy[j], lanes.oz[j]), d(lanes.dx[j], lanes.dy[j], lanes.dz[j]);
+          const bool window = (lanes.windows >> j) & 1;
+          if (segmentFromClip(o, d, glm::vec3(lanes.ix[j], lanes.iy[j], lanes.iz[j]), scale.step, lanes.phase[j],
+                              scale.inverseStep, lanes.firstIndex[j], lanes.lastIndex[j],
+                              -glm::vec3(lanes.wx[j], lanes.wy[j], lanes.wz[j]), local, occludedFrom[j],
+                              segments[pending], window ? lanes.nearOwned[j] : -1, window ? lanes.farOwned[j] : -1))
+            queue(x0 + j, y);
+        }
+        continue;
+      }
+      for (int bits = live; bits != 0; bits &= bits - 1) {
+        const int j = __builtin_ctz(bits);
+        const Ray ray = camera.ray(x0 + j, y);
+        if (segmentFor(VoxelRay(ray, scale), -ray.direction, clip, local, occludedFrom[j], segments[pending]))
+          queue(x0 + j, y);
+      }
+    }
+  if (pending > 0) march();
+  local.seconds += nowSeconds() - start;
 }
 
 }  // namespace kdswap

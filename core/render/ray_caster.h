@@ -52,6 +52,14 @@ class RayCaster {
   //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
   Image render(const Camera& camera, RenderCounters& counters) const;
 
+  //! The rectangle render's image covers (screenRect of the brick's visible box; empty when none).
+  Rect screenRect(const Camera& camera) const;
+
+  //! render's pixels of `region` only, into `image` (over the rectangle render would cover, or
+  //! holding `region`), on the calling thread; adds to `counters`. Pixels of a region are
+  //! the same as render's: waves render a brick one screen cell at a time with it.
+  void renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& counters) const;
+
   //! One pixel: premultiplied colour and opacity of this brick's segment of the ray, from its
   //! samples with lattice index below `occludedFrom`.
   Rgba castRay(const Ray& ray, RenderCounters& counters, long occludedFrom = OcclusionGrid::kNever) const;
