@@ -173,7 +173,7 @@ TEST_CASE("front transmittance: a brick rendered with it dims each pixel as addB
   CHECK(dimmed > 100);
 }
 
-TEST_CASE("ray caster: a brick rendered region by region equals it rendered whole, pixels and counters") {
+TEST_CASE("ray caster: a brick rendered region by region equals it rendered whole: pixels, counters and content bounds") {
   Fixture& f = fixture();
   RenderSettings settings;
   settings.earlyTermination = 0.9f;
@@ -183,8 +183,12 @@ TEST_CASE("ray caster: a brick rendered region by region equals it rendered whol
   for (const View& view : test::randomViews(rng, 3)) {
     const Camera camera(view, glm::vec3(0.0f), glm::vec3(f.whole.volumeDims() - 1) * f.whole.spacing(), 53, 47);
     RenderCounters whole;
-    const Image reference = caster.render(camera, whole);
+    Rect content{1, 2, 3, 4};
+    const Image reference = caster.render(camera, whole, &content);
     REQUIRE(caster.screenRect(camera) == reference.rect());
+    CHECK(content == reference.opaqueBounds());
+    CHECK(!content.empty());
+    CHECK(content != reference.rect());  // the blobs leave clear margins: the bounds are not just the rectangle
     REQUIRE(whole.samples > 0);
     // Regions of a ragged grid, in a shuffled order: sizes not multiples of eight, some a pixel wide.
     const Rect rect = reference.rect();
@@ -201,7 +205,13 @@ TEST_CASE("ray caster: a brick rendered region by region equals it rendered whol
     std::shuffle(regions.begin(), regions.end(), rng);
     Image pieced(rect);
     RenderCounters counters;
-    for (const Rect& region : regions) caster.renderRegion(camera, region, pieced, counters);
+    Rect united;
+    for (const Rect& region : regions) {
+      const Rect bounds = caster.renderRegion(camera, region, pieced, counters);
+      CHECK(bounds == pieced.crop(region).opaqueBounds());
+      united = united.unite(bounds);
+    }
+    CHECK(united == content);
     CHECK(maxAbsDifference(pieced, reference, rect) == 0.0f);
     CHECK(counters.samples == whole.samples);
     CHECK(counters.rays == whole.rays);

@@ -57,6 +57,7 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
   for (std::size_t p = 0; p < pieces.size(); ++p) waiting[p].store(graph.waitsFor(p), std::memory_order_relaxed);
   struct PieceTimes {
     RenderCounters counters;
+    Rect content;  // its pixels with opacity above 0
     double start = 0.0, end = 0.0;
   };
   std::vector<PieceTimes> times(pieces.size());
@@ -74,7 +75,7 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
       rendered[rank].image = Image(rects[piece.brick]);
     });
     // Dims `front` where it rendered (only pieces waiting for this one read those pixels).
-    brick.caster->renderRegion(plan.camera, piece.rect, rendered[rank].image, times[p].counters);
+    times[p].content = brick.caster->renderRegion(plan.camera, piece.rect, rendered[rank].image, times[p].counters);
     times[p].end = nowSeconds();
     if (brick.piecesLeft.fetch_sub(1, std::memory_order_acq_rel) == 1 && plan.nodesRendered)
       plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // progress display
@@ -84,7 +85,8 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
       if (waiting[*q].fetch_sub(1, std::memory_order_acq_rel) == 1) feeder.add(*q);
   });
 
-  // Per brick: its pieces' counters summed, its time from its first piece's start to its last's end.
+  // Per brick: its pieces' counters summed and content bounds united, its time from its first
+  // piece's start to its last's end.
   for (std::size_t i = 0; i < n; ++i) {
     RenderedBrick& r = rendered[std::size_t(order[i])];
     r.start = r.end = begin;
@@ -99,6 +101,7 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
     r.start = seen[i] ? std::min(r.start, t.start) : t.start;
     r.end = seen[i] ? std::max(r.end, t.end) : t.end;
     seen[i] = true;
+    r.content = r.content.unite(t.content);
     r.counters.rays += t.counters.rays;
     r.counters.samples += t.counters.samples;
     r.counters.occluded += t.counters.occluded;

@@ -194,7 +194,7 @@ std::unique_ptr<RayCaster> ownBrickCaster(NodeState& node, const FramePlan& plan
 RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransmittance* front) {
   RenderedBrick out;
   out.start = nowSeconds();
-  out.image = ownBrickCaster(node, plan, front)->render(plan.camera, out.counters);
+  out.image = ownBrickCaster(node, plan, front)->render(plan.camera, out.counters, &out.content);
   out.end = nowSeconds();
   return out;
 }
@@ -218,7 +218,7 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
     // Keep only the rectangle the brick's rays reached: the pixels around it are empty ("over"
     // with an empty pixel changes nothing), and with every node's partial image alive at once
     // before compositing, those margins were most of a frame's memory at large P.
-    partial = trimToContent(std::move(rendered.image));
+    partial = trimTo(std::move(rendered.image), rendered.content);
     if (plan.waves) report.renderStart = rendered.start;  // rendered in its wave, before this task
     report.renderEnd = plan.waves ? rendered.end : nowSeconds();
     report.renderSeconds = rendered.counters.seconds;

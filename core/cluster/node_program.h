@@ -48,6 +48,7 @@ void receiveBrick(NodeState& node, Communicator& comm, int source = Communicator
 //! A node's brick rendered for one frame, with its counters and when it was rendered.
 struct RenderedBrick {
   Image image;
+  Rect content;  //!< image.opaqueBounds(), found while rendering
   RenderCounters counters;
   double start = 0.0, end = 0.0;
   std::vector<int> renderedAfter;  //!< waves: the ranks in front of this brick (NodeReport::renderedAfter)

@@ -1,6 +1,7 @@
 // Image <-> message, and the pairwise merge every strategy uses.
 #include "core/composite/image_message.h"
 
+#include "core/util/check.h"
 #include "core/util/error.h"
 
 namespace kdswap {
@@ -67,6 +68,11 @@ Image mergeImages(Image mine, Image theirs, bool theirsInFront, std::int64_t& pi
 
 Image trimToContent(Image image) {
   const Rect content = image.opaqueBounds();
+  return trimTo(std::move(image), content);
+}
+
+Image trimTo(Image image, const Rect& content) {
+  KDSWAP_CHECK(content == image.opaqueBounds());
   if (content == image.rect()) return image;
   return image.crop(content);
 }

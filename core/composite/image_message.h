@@ -21,5 +21,7 @@ Image mergeImages(Image mine, Image theirs, bool theirsInFront, std::int64_t& pi
 //! The image cut down to the bounding rectangle of its non-empty pixels (exact: "over" with an
 //! empty pixel changes nothing). Used for sparse messages and for each node's partial image.
 Image trimToContent(Image image);
+//! trimToContent with the content's bounds already known (they must be image.opaqueBounds()).
+Image trimTo(Image image, const Rect& content);
 
 }  // namespace kdswap

@@ -49,16 +49,19 @@ class RayCaster {
   static Rect screenRect(const EmptySpaceMap& emptySpace, const glm::vec3& spacing, const Camera& camera);
 
   //! Partial image over the screen rectangle the brick covers (empty for an empty brick).
-  //! Uses every worker thread of the current arena (tiles), isolated from other tasks.
-  Image render(const Camera& camera, RenderCounters& counters) const;
+  //! Uses every worker thread of the current arena (tiles), isolated from other tasks. With
+  //! `content`, also the bounds of its pixels with opacity above 0 (Image::opaqueBounds, found
+  //! as the pixels are written instead of by a scan).
+  Image render(const Camera& camera, RenderCounters& counters, Rect* content = nullptr) const;
 
   //! The rectangle render's image covers (screenRect of the brick's visible box; empty when none).
   Rect screenRect(const Camera& camera) const;
 
   //! render's pixels of `region` only, into `image` (over the rectangle render would cover, or
   //! holding `region`), on the calling thread; adds to `counters`. Pixels of a region are
-  //! the same as render's: waves render a brick one screen cell at a time with it.
-  void renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& counters) const;
+  //! the same as render's: waves render a brick one screen cell at a time with it. Returns the
+  //! bounds of the region's pixels it left with opacity above 0.
+  Rect renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& counters) const;
 
   //! One pixel: premultiplied colour and opacity of this brick's segment of the ray, from its
   //! samples with lattice index below `occludedFrom`.
