@@ -97,6 +97,13 @@ void barTooltip(const NodeReport& n, const TimelineBar& bar, bool timeline) {
       ImGui::Text("ray-casting work %.2f ms, %.3g rays, %.3g samples", n.renderSeconds * 1e3, double(n.rays),
                   double(n.samples));
       if (!n.bricks.empty()) ImGui::Text("%s rendered", counted(long(n.bricks.size()), "brick").c_str());
+      if (!n.renderedAfter.empty()) {
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
+        ImGui::TextDisabled("waves: rendered one screen cell at a time, each cell after the pieces there of the %s "
+                            "in front; the step spans its first cell to its last, between other nodes' cells",
+                            counted(long(n.renderedAfter.size()), "brick").c_str());
+        ImGui::PopTextWrapPos();
+      }
       break;
     case Kind::Brick: {
       const NodeReport::BrickRender& b = n.bricks[std::size_t(bar.brick)];
