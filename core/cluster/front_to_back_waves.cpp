@@ -102,10 +102,7 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
     r.end = seen[i] ? std::max(r.end, t.end) : t.end;
     seen[i] = true;
     r.content = r.content.unite(t.content);
-    r.counters.rays += t.counters.rays;
-    r.counters.samples += t.counters.samples;
-    r.counters.occluded += t.counters.occluded;
-    r.counters.seconds += t.counters.seconds;
+    r.counters += t.counters;
   }
   return rendered;
 }

@@ -259,8 +259,7 @@ Rect RayCaster::screenRect(const EmptySpaceMap& emptySpace, const glm::vec3& spa
 
 Image RayCaster::render(const Camera& camera, RenderCounters& counters, Rect* content) const {
   if (content) *content = Rect{};
-  if (!emptySpace_->anyVisible()) return Image{};
-  const Rect rect = screenRect(*emptySpace_, brick_.spacing(), camera);
+  const Rect rect = screenRect(camera);  // empty when nothing in the brick is visible
   Image image(rect);
   if (rect.empty()) return image;
   tbb::combinable<RenderCounters> perThread;
@@ -277,12 +276,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters, Rect* co
                       });
   });
   if (content) contentPerThread.combine_each([&](const Rect& r) { *content = content->unite(r); });
-  perThread.combine_each([&](const RenderCounters& c) {
-    counters.rays += c.rays;
-    counters.samples += c.samples;
-    counters.occluded += c.occluded;
-    counters.seconds += c.seconds;
-  });
+  perThread.combine_each([&](const RenderCounters& c) { counters += c; });
   return image;
 }
 

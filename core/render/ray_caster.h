@@ -28,6 +28,12 @@ struct RenderCounters {
   std::uint64_t samples = 0;  //!< samples taken inside the brick
   std::uint64_t occluded = 0; //!< rays skipped: opaque matter in front of the brick ends them
   double seconds = 0.0;       //!< work time, summed over tiles (time on one processor)
+
+  //! Adds another part's counts (tiles of one render, pieces of one brick).
+  RenderCounters& operator+=(const RenderCounters& other) {
+    rays += other.rays, samples += other.samples, occluded += other.occluded, seconds += other.seconds;
+    return *this;
+  }
 };
 
 class RayCaster {
