@@ -14,6 +14,7 @@
 #include "core/bench/bench_report.h"
 #include "core/bench/machine_info.h"
 #include "core/bench/micro_bench.h"
+#include "core/bench/paper_comparison.h"
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
 #include "core/bench/speed_targets.h"
@@ -178,6 +179,25 @@ TEST_CASE("every paper figure carries its source") {
     CHECK_FALSE(c.source.empty());
     CHECK(c.nodes > 0);
   }
+}
+
+TEST_CASE("a paper cell with waves takes the single node's samples, fewer than without waves") {
+  // A dense stand-in at a small size: the rays stop a few bricks deep, so without waves the nodes
+  // behind sample what the single-node ray never reaches.
+  PaperCell cell{"test table", "dense field", "turbulence:128", 64, 64, std::nullopt, std::nullopt, "test"};
+  bool interrupted = true;
+  const BenchCell plain = measurePaperCell(cell, 1, nullptr, interrupted);
+  CHECK_FALSE(interrupted);
+  const BenchCell waves = measurePaperCell(cell, 1, nullptr, interrupted, /*waves=*/true);
+  CHECK_FALSE(interrupted);
+  cell.nodes = 1;
+  const BenchCell one = measurePaperCell(cell, 1, nullptr, interrupted);
+  CHECK(plain.strategy == "binary-swap");
+  CHECK(waves.strategy == "binary-swap+waves");
+  CHECK(waves.nodes == 64);
+  // The same samples as one node up to the rounding of each node's stop (T_own <= stop / T_front).
+  CHECK(waves.samples == doctest::Approx(one.samples).epsilon(0.005));
+  CHECK(waves.samples < 0.99 * plain.samples);
 }
 
 TEST_CASE("the grid compares space and cost planes, with node speeds and a network model") {

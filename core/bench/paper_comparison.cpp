@@ -25,12 +25,14 @@ std::string ratio(double ours, const std::optional<double>& paper) {
 
 }  // namespace
 
-BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted) {
+BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted,
+                           bool waves) {
   auto source = openDataset(cell.standIn);
   BenchGridOptions o;
   o.sizes = {cell.imageSize};
   o.nodes = {cell.nodes};
   o.frames = frames;
+  o.base.settings.frontToBackWaves = waves;
   o.base.transfer = loadTransferFunction(source->info().preset.empty() ? "grayscale" : source->info().preset);
   const BenchResult r = runBenchGrid(*source, o, {}, stop);
   interrupted = r.interrupted || r.cells.empty();

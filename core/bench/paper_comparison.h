@@ -12,8 +12,10 @@
 namespace kdswap {
 
 //! One paper cell with our stand-in: its preset, the default settings (step 0.5, shading),
-//! binary-swap, `frames` measured frames. `interrupted` is set when `stop` cut it short.
-BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted);
+//! binary-swap, `frames` measured frames; with `waves`, front-to-back waves (beyond the paper).
+//! `interrupted` is set when `stop` cut it short.
+BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted,
+                           bool waves = false);
 
 //! Runs every cell of paperCells() (`frames` measured frames each) and returns the printed table.
 //! `log` gets a line per cell as it starts; `stop` (may be null) ends the run after a frame.
