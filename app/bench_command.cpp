@@ -215,6 +215,9 @@ void run(const BenchOptions& o) {
   if (!o.vtkMs.empty() && !o.targets) throw Error("--vtk-ms goes with --targets");
   if (o.repeat != 1 && !o.targets) throw Error("--repeat goes with --targets");
   if (o.headGiven && !o.targets) throw Error("--head goes with --targets");
+  if (o.waves && (o.micro || o.targets))
+    throw Error(std::string("--waves goes with a grid run or --paper; ") +
+                (o.micro ? "--micro times kernels alone" : "--targets measures each scene with and without waves itself"));
   if (o.repeat < 1 || o.repeat > 20) throw Error("--repeat must be from 1 to 20");
   // These modes run fixed cells on their own data sets: the grid's options would be silently ignored.
   if (o.micro || o.paper || o.targets) {
@@ -252,7 +255,7 @@ void run(const BenchOptions& o) {
     }
     std::printf("\n%s", formatCompositingTable(strategies).c_str());
   } else if (o.paper) {
-    const std::string comparison = runPaperComparison(o.frames, log, &gStop);
+    const std::string comparison = runPaperComparison(o.frames, log, &gStop, o.waves);
     std::printf("%s%s", formatMachine(machine).c_str(), comparison.c_str());
   } else if (o.targets) {
     // The CT head target runs after minutes of others: a wrong --head must fail before them.
@@ -306,7 +309,7 @@ void addBenchCommand(CLI::App& app) {
       "  kdswap bench --dataset phantom:256 --quantise 8 --sizes 512 --nodes 1,64 --interleave\n"
       "  kdswap bench --volume scan.raw --raw-dims 256x256x113 --raw-type uint16 --sizes 256 --nodes 1,8\n"
       "  kdswap bench --micro      kernels alone: ray casting per core, over vs memcpy, binary-swap\n"
-      "  kdswap bench --paper      the paper's sourced cells beside ours\n"
+      "  kdswap bench --paper      the paper's sourced cells beside ours (add --waves: with front-to-back waves)\n"
       "  kdswap bench --targets    issue 6's speed targets, MET or MISSED\n"
       "Ctrl-C stops after the current frame and writes what was measured (exit 130).\n");
   cmd->add_option("--dataset", o->dataset,
@@ -345,7 +348,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--partition", o->partition, "kd or slab")->capture_default_str();
   cmd->add_flag("--sparse", o->sparse, "Send only bounding rectangles of non-empty pixels");
   cmd->add_flag("--waves", o->waves, "Front-to-back waves: nodes render nearest first, stopping where those in front stopped the light (see kdswap "
-                "render --help); cells read STRATEGY+waves");
+                "render --help); cells read STRATEGY+waves. With --paper: the paper's cells with waves");
   cmd->add_flag("--interleave", o->interleave,
                 "Measure in rounds, every cell's frame k before any cell's frame k+1, so drift in the machine's speed "
                 "hits every cell alike (for comparing cells on a shared machine); each measured frame follows its "
@@ -391,7 +394,7 @@ void addBenchCommand(CLI::App& app) {
     std::vector<CLI::Option*> options;
     for (const char* name : {"--dataset", "--volume", "--spacing", "--quantise", "--sizes", "--nodes", "--composite",
                              "--degrees", "--view", "--distance", "--step", "--shading", "--ert", "--tf", "--partition", "--sparse",
-                             "--waves", "--interleave", "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
+                             "--interleave", "--balance", "--speeds", "--bricks-per-node", "--network", "--voxels", "--threads",
                              "--out-dir"})
       options.push_back(cmd->get_option(name));
     return options;

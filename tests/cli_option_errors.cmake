@@ -56,6 +56,12 @@ kdswap_cli_case(BenchSizesWithPaperIsRefused
 kdswap_cli_case(BenchOutDirWithMicroIsRefused
                 EXPECT "kdswap: --out-dir sets up a grid run. --micro runs its own fixed cells"
                 ARGS bench --micro --out-dir b)
+kdswap_cli_case(BenchWavesWithTargetsIsRefused
+                EXPECT "kdswap: --waves goes with a grid run or --paper. --targets measures each scene with and without waves itself"
+                ARGS bench --targets --waves)
+kdswap_cli_case(BenchWavesWithMicroIsRefused
+                EXPECT "kdswap: --waves goes with a grid run or --paper. --micro times kernels alone"
+                ARGS bench --micro --waves)
 kdswap_cli_case(BenchFramesWithMicroIsRefused EXPECT "kdswap: --frames does not apply to --micro"
                 ARGS bench --micro --frames 3)
 kdswap_cli_case(BenchHeadWithoutTargetsIsRefused EXPECT "kdswap: --head goes with --targets"

@@ -40,9 +40,10 @@ BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<
 }
 
 std::string runPaperComparison(int frames, const std::function<void(const std::string&)>& log,
-                               const std::atomic<bool>* stop) {
-  std::string out =
-      "Paper cells with stand-in data (ours: median of frames, maximum over nodes; ratio = ours / paper):\n";
+                               const std::atomic<bool>* stop, bool waves) {
+  std::string out = std::string("Paper cells with stand-in data") +
+                    (waves ? ", front-to-back waves (--waves, beyond the paper: the same nodes and binary swap)" : "") +
+                    " (ours: median of frames, maximum over nodes; ratio = ours / paper):\n";
   char buf[512];
   std::snprintf(buf, sizeof buf, "  %-15s %-16s %-15s %6s %5s | %9s %9s | %9s %9s | %8s %8s\n", "table", "paper data",
                 "stand-in", "image", "P", "render s", "comp. s", "paper r.", "paper c.", "r ratio", "c ratio");
@@ -55,7 +56,7 @@ std::string runPaperComparison(int frames, const std::function<void(const std::s
     if (log) log(cell.table + ": " + cell.standIn + ", " + std::to_string(cell.imageSize) + "^2, P=" +
                  std::to_string(cell.nodes) + " ...");
     bool interrupted = false;
-    const BenchCell c = measurePaperCell(cell, frames, stop, interrupted);
+    const BenchCell c = measurePaperCell(cell, frames, stop, interrupted, waves);
     if (interrupted) continue;
     std::snprintf(buf, sizeof buf, "  %-15s %-16s %-15s %6d %5d | %9.4f %9.4f | %9s %9s | %8s %8s\n",
                   cell.table.c_str(), cell.paperData.c_str(), cell.standIn.c_str(), cell.imageSize, cell.nodes,

@@ -17,9 +17,10 @@ namespace kdswap {
 BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted,
                            bool waves = false);
 
-//! Runs every cell of paperCells() (`frames` measured frames each) and returns the printed table.
-//! `log` gets a line per cell as it starts; `stop` (may be null) ends the run after a frame.
+//! Runs every cell of paperCells() (`frames` measured frames each; with `waves`, front-to-back
+//! waves) and returns the printed table. `log` gets a line per cell as it starts; `stop` (may be
+//! null) ends the run after a frame.
 std::string runPaperComparison(int frames, const std::function<void(const std::string&)>& log,
-                               const std::atomic<bool>* stop);
+                               const std::atomic<bool>* stop, bool waves = false);
 
 }  // namespace kdswap
