@@ -286,8 +286,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     // P = 512: 52 M samples a frame instead of 74 M with the occlusion map).
     say(cell.table + ": " + cell.standIn + ", P=" + std::to_string(cell.nodes) + ", front-to-back waves ...");
     const BenchCell w = measurePaperCell(cell, o.frames, stop, interrupted, /*waves=*/true);
-    out.push_back({std::string(name) + kWavesLabel, command + " --waves", w.wallSeconds * 1e3, paper * 1e3 / 10.0, "ms",
-                   false, !interrupted,
+    out.push_back({std::string(name) + kWavesLabel, "kdswap bench --paper --waves   (or " + command + " --waves)",
+                   w.wallSeconds * 1e3, paper * 1e3 / 10.0, "ms", false, !interrupted,
                    "paper " + ms(paper) + "; our modelled parallel time " + ms(w.modelledSeconds)});
   }
   return out;
