@@ -18,6 +18,7 @@
 #include "core/bench/paper_tables.h"
 #include "core/bench/quantised_source.h"
 #include "core/bench/speed_targets.h"
+#include "core/volume/datasets/dataset.h"
 #include "core/volume/respaced_source.h"
 #include "core/bench/speedup_chart.h"
 #include "core/bench/statistics.h"
@@ -185,13 +186,14 @@ TEST_CASE("a paper cell with waves takes the single node's samples, fewer than w
   // A dense stand-in at a small size: the rays stop a few bricks deep, so without waves the nodes
   // behind sample what the single-node ray never reaches.
   PaperCell cell{"test table", "dense field", "turbulence:128", 64, 64, std::nullopt, std::nullopt, "test"};
+  const auto standIn = openDataset(cell.standIn);
   bool interrupted = true;
-  const BenchCell plain = measurePaperCell(cell, 1, nullptr, interrupted);
+  const BenchCell plain = measurePaperCell(cell, *standIn, 1, nullptr, interrupted);
   CHECK_FALSE(interrupted);
-  const BenchCell waves = measurePaperCell(cell, 1, nullptr, interrupted, /*waves=*/true);
+  const BenchCell waves = measurePaperCell(cell, *standIn, 1, nullptr, interrupted, /*waves=*/true);
   CHECK_FALSE(interrupted);
   cell.nodes = 1;
-  const BenchCell one = measurePaperCell(cell, 1, nullptr, interrupted);
+  const BenchCell one = measurePaperCell(cell, *standIn, 1, nullptr, interrupted);
   CHECK(plain.strategy == "binary-swap");
   CHECK(waves.strategy == "binary-swap+waves");
   CHECK(waves.nodes == 64);

@@ -25,16 +25,15 @@ std::string ratio(double ours, const std::optional<double>& paper) {
 
 }  // namespace
 
-BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted,
-                           bool waves) {
-  auto source = openDataset(cell.standIn);
+BenchCell measurePaperCell(const PaperCell& cell, const VolumeSource& standIn, int frames,
+                           const std::atomic<bool>* stop, bool& interrupted, bool waves) {
   BenchGridOptions o;
   o.sizes = {cell.imageSize};
   o.nodes = {cell.nodes};
   o.frames = frames;
   o.base.settings.frontToBackWaves = waves;
-  o.base.transfer = loadTransferFunction(source->info().preset.empty() ? "grayscale" : source->info().preset);
-  const BenchResult r = runBenchGrid(*source, o, {}, stop);
+  o.base.transfer = loadTransferFunction(standIn.info().preset.empty() ? "grayscale" : standIn.info().preset);
+  const BenchResult r = runBenchGrid(standIn, o, {}, stop);
   interrupted = r.interrupted || r.cells.empty();
   return r.cells.empty() ? BenchCell{} : r.cells.front();
 }
@@ -56,7 +55,7 @@ std::string runPaperComparison(int frames, const std::function<void(const std::s
     if (log) log(cell.table + ": " + cell.standIn + ", " + std::to_string(cell.imageSize) + "^2, P=" +
                  std::to_string(cell.nodes) + " ...");
     bool interrupted = false;
-    const BenchCell c = measurePaperCell(cell, frames, stop, interrupted, waves);
+    const BenchCell c = measurePaperCell(cell, *openDataset(cell.standIn), frames, stop, interrupted, waves);
     if (interrupted) continue;
     std::snprintf(buf, sizeof buf, "  %-15s %-16s %-15s %6d %5d | %9.4f %9.4f | %9s %9s | %8s %8s\n",
                   cell.table.c_str(), cell.paperData.c_str(), cell.standIn.c_str(), cell.imageSize, cell.nodes,

@@ -8,14 +8,16 @@
 
 #include "core/bench/bench_grid.h"
 #include "core/bench/paper_tables.h"
+#include "core/volume/volume_source.h"
 
 namespace kdswap {
 
-//! One paper cell with our stand-in: its preset, the default settings (step 0.5, shading),
-//! binary-swap, `frames` measured frames; with `waves`, front-to-back waves (beyond the paper).
+//! One paper cell on `standIn` (the cell's stand-in data set, opened by the caller so that both
+//! modes can share it): its preset, the default settings (step 0.5, shading), binary-swap,
+//! `frames` measured frames; with `waves`, front-to-back waves (beyond the paper).
 //! `interrupted` is set when `stop` cut it short.
-BenchCell measurePaperCell(const PaperCell& cell, int frames, const std::atomic<bool>* stop, bool& interrupted,
-                           bool waves = false);
+BenchCell measurePaperCell(const PaperCell& cell, const VolumeSource& standIn, int frames,
+                           const std::atomic<bool>* stop, bool& interrupted, bool waves = false);
 
 //! Runs every cell of paperCells() (`frames` measured frames each; with `waves`, front-to-back
 //! waves) and returns the printed table. `log` gets a line per cell as it starts; `stop` (may be

@@ -269,7 +269,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     if (cell.table.find("CM-5") == std::string::npos) continue;
     say(cell.table + ": " + cell.standIn + ", " + std::to_string(cell.imageSize) + "^2, P=" + std::to_string(cell.nodes) +
         " ...");
-    const BenchCell c = measurePaperCell(cell, o.frames, stop, interrupted);
+    const auto standIn = openDataset(cell.standIn);  // generated once for both modes
+    const BenchCell c = measurePaperCell(cell, *standIn, o.frames, stop, interrupted);
     const double paper = *cell.renderSeconds + *cell.compositeSeconds;
     char name[256];
     std::snprintf(name, sizeof name, "%s, %s as %s, %d^2, P=%d: wall <= paper (render + composite) / 10",
@@ -285,7 +286,7 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     // stopped the light: no node takes a sample the single-node ray would not (turbulence 256^3 at
     // P = 512: 52 M samples a frame instead of 74 M with the occlusion map).
     say(cell.table + ": " + cell.standIn + ", P=" + std::to_string(cell.nodes) + ", front-to-back waves ...");
-    const BenchCell w = measurePaperCell(cell, o.frames, stop, interrupted, /*waves=*/true);
+    const BenchCell w = measurePaperCell(cell, *standIn, o.frames, stop, interrupted, /*waves=*/true);
     out.push_back({std::string(name) + kWavesLabel, "kdswap bench --paper --waves   (or " + command + " --waves)",
                    w.wallSeconds * 1e3, paper * 1e3 / 10.0, "ms", false, !interrupted,
                    "paper " + ms(paper) + "; our modelled parallel time " + ms(w.modelledSeconds)});
