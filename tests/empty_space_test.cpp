@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 
 #include "core/render/empty_space_map.h"
+#include "core/render/ray_caster.h"
+#include "core/render/ray_march.h"
 #include "core/render/reference_render.h"
 #include "core/transfer/presets.h"
 #include "core/volume/datasets/dataset.h"
@@ -95,6 +98,61 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
         CHECK(maxAbsDifference(a.image, b.image, b.image.rect()) <= 1e-6f);
         CHECK(a.counters.samples < b.counters.samples);
       }
+  }
+}
+
+TEST_CASE("a brick is marked all visible exactly when no cell of its map is empty, and renders the same") {
+  auto volume = openDataset("turbulence:32");
+  const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
+  const Brick whole = wholeVolumeBrick(*volume, 1);
+  // A transfer function that shows every value, one with a threshold that hides the low ones.
+  const TransferFunction everything({{0.0f, {1.0f, 1.0f, 1.0f}}, {1.0f, {1.0f, 0.5f, 0.2f}}},
+                                    {{0.0f, 0.05f}, {1.0f, 0.5f}}, "everything");
+  const TransferFunction threshold({{0.0f, {0.2f, 0.3f, 0.9f}}, {1.0f, {1.0f, 0.9f, 0.6f}}},
+                                   {{0.0f, 0.0f}, {0.7f, 0.0f}, {1.0f, 0.6f}}, "threshold");
+  const auto mapOf = [&](const TransferFunction& tf, bool enabled) {
+    const TransferTable table(tf, 0.5f);
+    const float scale = 1.0f / (range.y - range.x);
+    return EmptySpaceMap(whole, table, scale, -range.x * scale, enabled);
+  };
+  const auto emptyCells = [&](const EmptySpaceMap& map) {
+    const glm::ivec3 n = map.cellCount();
+    long empty = 0;
+    for (std::size_t i = 0; i < std::size_t(n.x) * n.y * n.z; ++i) empty += map.reach(i) != 0;
+    return empty;
+  };
+  const EmptySpaceMap dense = mapOf(everything, true), gappy = mapOf(threshold, true),
+                      unskipped = mapOf(threshold, false);
+  CHECK(emptyCells(dense) == 0);
+  CHECK(dense.allVisible());
+  CHECK(emptyCells(gappy) > 0);
+  CHECK_FALSE(gappy.allVisible());
+  CHECK(gappy.anyVisible());
+  CHECK(unskipped.allVisible());  // skipping off: nothing is empty
+  // The SIMD march skips the map of a dense brick; the scalar march reads it at every sample.
+  // Same samples, same bits, with skipping on (the map is built and all visible).
+  const MarchFunction simd = selectedMarchFunction();
+  if (simd == &marchScalar) {
+    MESSAGE("only the scalar march runs here: nothing to compare");
+    return;
+  }
+  for (const float azimuth : {37.0f, 200.0f}) {
+    View view;
+    view.azimuthDeg = azimuth;
+    view.elevationDeg = azimuth > 100.0f ? -30.0f : 20.0f;
+    const Camera camera(view, glm::vec3(0.0f), glm::vec3(whole.volumeDims() - 1) * whole.spacing(), 64, 56);
+    RenderSettings settings;
+    const TransferTable table(everything, settings.stepVoxels);
+    RayCaster scalar(whole, table, settings, range), vector(whole, table, settings, range);
+    scalar.useMarch(&marchScalar);
+    vector.useMarch(simd);
+    RenderCounters a, b;
+    const Image imageA = scalar.render(camera, a), imageB = vector.render(camera, b);
+    CAPTURE(azimuth);
+    CHECK(a.samples == b.samples);
+    CHECK(a.samples > 10000);
+    CHECK(imageA.rect() == imageB.rect());
+    CHECK(std::memcmp(imageA.data(), imageB.data(), std::size_t(imageA.rect().area()) * sizeof(Rgba)) == 0);
   }
 }
 

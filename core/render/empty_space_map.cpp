@@ -65,6 +65,7 @@ EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, flo
   const int shift = brick.cellShift();
   visibleLo_ = glm::max(glm::vec3((lo + c0) << shift), glm::vec3(brick.owned().lo));
   visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << shift), glm::vec3(brick.owned().hi));
+  allVisible_ = std::find(invisible.begin(), invisible.end(), std::uint8_t(1)) == invisible.end();
   reach_ = chessboardDistance(std::move(invisible), n);
   reach_.resize(reach_.size() + kReachPadding, 0);
 }

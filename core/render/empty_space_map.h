@@ -34,6 +34,8 @@ class EmptySpaceMap {
   }
 
   bool anyVisible() const { return anyVisible_; }
+  //! Every cell can hold a visible sample (every reach is 0): a march may skip the map.
+  bool allVisible() const { return allVisible_; }
   //! Bounds (voxel coordinates, within the owned box) of the cells that can be visible; rays and
   //! the screen rectangle are clipped to them. The owned box when skipping is off.
   const glm::vec3& visibleLo() const { return visibleLo_; }
@@ -48,6 +50,7 @@ class EmptySpaceMap {
   std::vector<std::uint8_t> reach_;
   glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
   bool anyVisible_ = false;
+  bool allVisible_ = false;
 };
 
 }  // namespace kdswap

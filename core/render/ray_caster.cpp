@@ -128,6 +128,7 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   shading.specularTable = specular_->data();
   march_.storedLo = brick.stored().lo;
   march_.reach = emptySpace_->reachData();
+  march_.allVisible = emptySpace_->allVisible();
   march_.cellLo = brick.cellLo();
   march_.cellShift = brick.cellShift();
   march_.cellCount = emptySpace_->cellCount();

@@ -28,6 +28,7 @@ struct MarchContext {
   const std::uint8_t* reach = nullptr;  //!< EmptySpaceMap::reachData(), padded for 4-byte gathers
   glm::ivec3 cellLo{0}, cellCount{0};
   int cellShift = 2;                //!< Brick::cellShift(): cells of 2^cellShift voxels a side
+  bool allVisible = false;          //!< every reach is 0 (EmptySpaceMap::allVisible): the march may skip the map
   glm::vec3 lo{0.0f}, hi{0.0f};     //!< owned box [lo, hi), voxel coordinates
   //! Early ray termination: the ray stops once its transmittance (1 - opacity) is at most this,
   //! 1 - the termination opacity (0 with termination off: only an opaque sample ends the ray).

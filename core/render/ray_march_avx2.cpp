@@ -277,7 +277,7 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m25
 // lattice order, eight at a time). A ray's last, partial eight is handed back to the batch, which
 // packs the tails of several rays into one shading (TailPacker), so few lanes idle there either.
 // Where a group ends in empty space the ray jumps to the farthest exit of the empty cubes around
-// its invisible samples.
+// its invisible samples. In a brick with no empty cell the map is not read at all (kAllVisible).
 
 //! Samples k .. k + 7 of a ray (those up to `last`): points, cells, the cells' reach, voxel offsets.
 struct Group {
@@ -325,6 +325,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline __m256i reachAt(const BrickCon
   return _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(reachMap), cell, 1), _mm256_set1_epi32(0xFF));
 }
 
+template <bool kAllVisible>
 KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConstants& bc, const RayLanes& r,
                                                                const std::uint8_t* reachMap, long k, long last, Group& g) {
   g.n = int(std::min<long>(kLanes, last - k + 1));
@@ -337,10 +338,15 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConsta
   const __m256i ix = _mm256_cvttps_epi32(g.px), iy = _mm256_cvttps_epi32(g.py), iz = _mm256_cvttps_epi32(g.pz);
   g.cx = cellAxis(ix, bc.cellShift, bc.cellLoX), g.cy = cellAxis(iy, bc.cellShift, bc.cellLoY),
   g.cz = cellAxis(iz, bc.cellShift, bc.cellLoZ);
-  // Lanes past the segment look at cell 0.
-  g.reach = reachAt(bc, reachMap, g.cx, g.cy, g.cz, _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane));
-  g.visible =
-      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(g.reach, _mm256_setzero_si256()))) & ((1 << g.n) - 1);
+  if constexpr (kAllVisible) {  // every reach is 0 (MarchContext::allVisible): the gather would read zeros
+    g.reach = _mm256_setzero_si256();
+    g.visible = (1 << g.n) - 1;
+  } else {
+    // Lanes past the segment look at cell 0.
+    g.reach = reachAt(bc, reachMap, g.cx, g.cy, g.cz, _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane));
+    g.visible =
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(g.reach, _mm256_setzero_si256()))) & ((1 << g.n) - 1);
+  }
   g.offset = _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(iz, bc.loZ), bc.sz),
                                                _mm256_mullo_epi32(_mm256_sub_epi32(iy, bc.loY), bc.sy)),
                               _mm256_sub_epi32(ix, bc.loX));
@@ -756,7 +762,7 @@ KDSWAP_AVX2 inline void marchStarts(const MarchContext& m, const BrickConstants&
   }
 }
 
-template <typename VoxelT>
+template <typename VoxelT, bool kAllVisible>
 KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchContext& m, const BrickConstants& bc,
                                                                 const RaySegment& s, long first, std::uint64_t& samples,
                                                                 RayTail& tail) {
@@ -769,7 +775,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
   Waiting waiting{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
   long k = first;
   Group g;
-  if (k <= s.last) groupAt(bc, r, m.reach, k, s.last, g);
+  if (k <= s.last) groupAt<kAllVisible>(bc, r, m.reach, k, s.last, g);
   while (k <= s.last) {
     // Where the ray goes on: past the group, or, when it ends in empty space, past the farthest
     // empty cube its invisible samples lie in. The next group's test starts before this group's
@@ -778,7 +784,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
     const int full = (1 << g.n) - 1;
     if (!(g.visible >> (g.n - 1) & 1)) kNext = std::max(kNext, farthestResume(bc, s, g, ~g.visible & full) + 1);
     Group next;
-    if (kNext <= s.last) groupAt(bc, r, m.reach, kNext, s.last, next);
+    if (kNext <= s.last) groupAt<kAllVisible>(bc, r, m.reach, kNext, s.last, next);
 
     if (g.visible == 0xFF && waiting.size == 0) {  // dense data: eight in a row, nothing to pack
       if (shadeAndComposite(m, s, voxelsOf<VoxelT>(m), g.px, g.py, g.pz, g.offset, result, samples)) return;
@@ -816,7 +822,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
   tail.size = waiting.size;
 }
 
-template <typename VoxelT>
+template <typename VoxelT, bool kAllVisible>
 KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
                             std::uint64_t& samples) {
   const BrickConstants constants = brickConstants(m);
@@ -825,10 +831,13 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
   long first[kLanes * kLanes];
   int quietEights = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    if (i % (kLanes * kLanes) == 0)
+    if constexpr (kAllVisible) {
+      first[i % (kLanes * kLanes)] = segments[i].first;  // no empty space to hop over: the hops would stop at once
+    } else if (i % (kLanes * kLanes) == 0) {
       marchStarts(m, constants, segments + i, std::min<std::size_t>(kLanes * kLanes, count - i), quietEights, first);
+    }
     RayTail tail;
-    marchRay<VoxelT>(m, constants, segments[i], first[i % (kLanes * kLanes)], taken, tail);
+    marchRay<VoxelT, kAllVisible>(m, constants, segments[i], first[i % (kLanes * kLanes)], taken, tail);
     if (tail.size == 0)
       colours[i] = tail.result.rgba();
     else
@@ -838,12 +847,19 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
   samples += taken;
 }
 
+// A brick whose cells can all be visible (dense data, a small brick inside matter) gets a march
+// that never reads the empty-space map: no gather of reach bytes per group of eight, no leading
+// hops. The map would say "visible" everywhere, so the samples and bits are the same. Dense bricks
+// are common with many nodes: turbulence 256^3 at P = 64, 3-5% less wall time with and without
+// waves; the CT head with waves 1.6%; sparse scenes unchanged.
 KDSWAP_AVX2 void marchAvx2(const MarchContext& m, const RaySegment* segments, std::size_t count, Rgba* colours,
                            std::uint64_t& samples) {
   if (m.voxels.compact)
-    marchBatch<CompactVoxel>(m, segments, count, colours, samples);
+    m.allVisible ? marchBatch<CompactVoxel, true>(m, segments, count, colours, samples)
+                 : marchBatch<CompactVoxel, false>(m, segments, count, colours, samples);
   else
-    marchBatch<Voxel>(m, segments, count, colours, samples);
+    m.allVisible ? marchBatch<Voxel, true>(m, segments, count, colours, samples)
+                 : marchBatch<Voxel, false>(m, segments, count, colours, samples);
 }
 
 }  // namespace
