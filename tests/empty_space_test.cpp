@@ -110,10 +110,10 @@ TEST_CASE("a brick is marked all visible exactly when no cell of its map is empt
                                     {{0.0f, 0.05f}, {1.0f, 0.5f}}, "everything");
   const TransferFunction threshold({{0.0f, {0.2f, 0.3f, 0.9f}}, {1.0f, {1.0f, 0.9f, 0.6f}}},
                                    {{0.0f, 0.0f}, {0.7f, 0.0f}, {1.0f, 0.6f}}, "threshold");
-  const auto mapOf = [&](const TransferFunction& tf, bool enabled) {
-    const TransferTable table(tf, 0.5f);
-    const float scale = 1.0f / (range.y - range.x);
-    return EmptySpaceMap(whole, table, scale, -range.x * scale, enabled);
+  const auto mapOf = [&](const TransferFunction& tf, bool enabled) {  // as RayCaster builds it
+    const TransferTable table(tf, RenderSettings{}.stepVoxels);
+    const glm::vec2 scaleBias = normalisingScaleBias(range);
+    return EmptySpaceMap(whole, table, scaleBias.x, scaleBias.y, enabled);
   };
   const auto emptyCells = [&](const EmptySpaceMap& map) {
     const glm::ivec3 n = map.cellCount();
