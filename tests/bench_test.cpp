@@ -150,6 +150,47 @@ TEST_CASE("the speedup chart is written as a PNG of the requested size") {
   CHECK_THROWS_AS(drawSpeedupChart(cells, "no-such-strategy"), Error);
 }
 
+TEST_CASE("the speedup chart is log2 on both axes: a measured segment between two counts follows the ideal diagonal") {
+  // Two counts only, both with ideal speedup. On a log2 x axis with a linear y axis the straight
+  // segment from (1, 1) to (64, 64) would pass (8, 32.5), far above the ideal (8, 8); on log2-log2
+  // axes both are the same diagonal, so the curve's colour must be found at the ideal's (8, 8).
+  auto cell = [](int p, double speedup) {
+    BenchCell c;
+    c.strategy = "binary-swap";
+    c.nodes = p;
+    c.width = c.height = 64;
+    c.speedup = speedup;
+    return c;
+  };
+  auto isCurve = [](const Rgba& c) { return c.b > c.r + 0.3f; };  // the first palette colour, blue
+  const std::vector<BenchCell> ideal{cell(1, 1.0), cell(64, 64.0)};
+  const SpeedupChartLayout l = speedupChartLayout(ideal, "binary-swap");
+  CHECK(l.log2SpeedupLo == 0.0);
+  CHECK(l.log2SpeedupHi >= 6.0);
+  CHECK(l.y(1.0) == doctest::Approx(l.bottom));
+  CHECK(l.x(1.0) == doctest::Approx(l.left));
+  CHECK(l.x(8.0) == doctest::Approx(0.5 * (l.x(1.0) + l.x(64.0))));
+  const Image chart = drawSpeedupChart(ideal, "binary-swap");
+  bool onDiagonal = false;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      onDiagonal |= isCurve(chart.at(int(l.x(8.0)) + dx, int(std::lround(l.y(8.0))) + dy));
+  CHECK(onDiagonal);
+  bool above = false;  // where the log-linear chart drew it: nothing of the curve there now
+  for (int y = l.top; y < int(l.y(8.0)) - 4; ++y) above |= isCurve(chart.at(int(l.x(8.0)), y));
+  CHECK_FALSE(above);
+
+  // A speedup below 1 (nodes that cost more than they save) widens the axis below the baseline,
+  // and an interrupted cell's speedup of 0 is left out instead of breaking the log scale.
+  const std::vector<BenchCell> slow{cell(1, 1.0), cell(2, 0.7), cell(4, 0.0)};
+  const SpeedupChartLayout s = speedupChartLayout(slow, "binary-swap");
+  CHECK(s.log2SpeedupLo == -1.0);
+  const Image slowChart = drawSpeedupChart(slow, "binary-swap");
+  CHECK(isCurve(slowChart.at(int(s.x(2.0)), int(std::lround(s.y(0.7))))));
+  CHECK(s.y(0.7) > s.y(1.0));  // below the baseline on screen
+  CHECK_THROWS_AS(speedupChartLayout(slow, "binary-swap", 100, 100), Error);
+}
+
 TEST_CASE("quantising to 8 bits leaves at most 256 distinct values") {
   auto inner = test::makeBlobs(glm::ivec3(16));
   std::vector<float> raw(16 * 16 * 16);

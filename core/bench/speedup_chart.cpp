@@ -1,4 +1,4 @@
-// Speedup chart: axes, ticks, one polyline per image size, dashed ideal line, legend.
+// Speedup chart: log2-log2 axes, ticks, one polyline per image size, dashed ideal line, legend.
 #include "core/bench/speedup_chart.h"
 
 #include <algorithm>
@@ -36,88 +36,104 @@ void drawLine(Image& img, float x0, float y0, float x1, float y1, const Rgba& c,
   if (walked) *walked = along + length;
 }
 
-// A round upper bound for the y axis: 1, 2 or 5 times a power of ten.
-double niceCeiling(double v) {
-  if (v <= 1.0) return 1.0;
-  const double p = std::pow(10.0, std::floor(std::log10(v)));
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * p >= v) return m * p;
-  return 10.0 * p;
-}
-
-std::string formatTick(double v) {
+// A power of two as a tick label: 8, 1, 0.5, 0.25.
+std::string powerOfTwoLabel(int exponent) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, v == std::floor(v) ? "%.0f" : "%.1f", v);
+  std::snprintf(buf, sizeof buf, "%g", std::ldexp(1.0, exponent));
   return buf;
 }
 
 }  // namespace
 
-Image drawSpeedupChart(const std::vector<BenchCell>& cells, const std::string& strategy, int width, int height) {
+float SpeedupChartLayout::x(double nodes) const {
+  return float(left + (std::log2(nodes) - log2NodesLo) / (log2NodesHi - log2NodesLo) * (right - left));
+}
+
+float SpeedupChartLayout::y(double speedup) const {
+  return float(bottom - (std::log2(speedup) - log2SpeedupLo) / (log2SpeedupHi - log2SpeedupLo) * (bottom - top));
+}
+
+SpeedupChartLayout speedupChartLayout(const std::vector<BenchCell>& cells, const std::string& strategy, int width,
+                                      int height) {
   if (width < 200 || height < 150) throw Error("speedup chart: size must be at least 200x150");
-  std::map<int, std::vector<std::pair<int, double>>> curves;  // size -> (nodes, speedup), nodes ascending
   int pMin = 1 << 30, pMax = 0;
-  double yMax = 1.0;
+  double sMin = 1e300, sMax = 0;
   for (const BenchCell& c : cells) {
     if (c.strategy != strategy) continue;
-    curves[c.width].push_back({c.nodes, c.speedup});
     pMin = std::min(pMin, c.nodes);
     pMax = std::max(pMax, c.nodes);
-    yMax = std::max(yMax, c.speedup);
+    if (c.speedup > 0) sMin = std::min(sMin, c.speedup), sMax = std::max(sMax, c.speedup);
   }
-  if (curves.empty()) throw Error("speedup chart: no cell for strategy " + strategy);
+  if (pMax == 0) throw Error("speedup chart: no cell for strategy " + strategy);
+  SpeedupChartLayout l;
+  l.left = 56, l.right = width - 120, l.top = 28, l.bottom = height - 44;
+  l.log2NodesLo = std::log2(double(pMin));
+  l.log2NodesHi = std::max(l.log2NodesLo + 1.0, std::log2(double(pMax)));
+  // The y range holds the ideal line (speedup = P over the measured counts) and every measured
+  // speedup, widened to whole powers of two; a speedup below 1 (nodes that cost more than they
+  // save) gets its own decade below the baseline rather than being cut off.
+  const double lowest = std::min(double(pMin), sMin), highest = std::max(double(pMax), sMax);
+  l.log2SpeedupLo = std::floor(std::log2(lowest) + 1e-9);
+  l.log2SpeedupHi = std::max(l.log2SpeedupLo + 1.0, std::ceil(std::log2(highest) - 1e-9));
+  return l;
+}
+
+Image drawSpeedupChart(const std::vector<BenchCell>& cells, const std::string& strategy, int width, int height) {
+  const SpeedupChartLayout l = speedupChartLayout(cells, strategy, width, height);
+  std::map<int, std::vector<std::pair<int, double>>> curves;  // size -> (nodes, speedup), nodes ascending
+  std::vector<int> ticks;
+  for (const BenchCell& c : cells) {
+    if (c.strategy != strategy) continue;
+    ticks.push_back(c.nodes);
+    if (c.speedup > 0) curves[c.width].push_back({c.nodes, c.speedup});
+    else curves[c.width];  // keeps the size in the legend
+  }
   for (auto& [size, points] : curves) std::sort(points.begin(), points.end());
-  yMax = niceCeiling(std::max(yMax, double(pMax)) * 1.02);
 
   Image img(Rect{0, 0, width, height});
   std::fill(img.data(), img.data() + std::size_t(width) * height, kWhite);
-  const int left = 56, right = width - 120, top = 28, bottom = height - 44;
-  const double lo = std::log2(double(pMin)), hi = std::max(lo + 1.0, std::log2(double(pMax)));
-  auto sx = [&](double p) { return float(left + (std::log2(p) - lo) / (hi - lo) * (right - left)); };
-  auto sy = [&](double s) { return float(bottom - s / yMax * (bottom - top)); };
 
-  // Grid and ticks: y in five steps, x at every measured node count.
-  for (int i = 0; i <= 5; ++i) {
-    const double v = yMax * i / 5.0;
-    drawLine(img, float(left), sy(v), float(right), sy(v), i == 0 ? kBlack : kGrey, 1);
-    const std::string label = formatTick(v);
-    drawText(img, left - 6 - textWidth(label), int(sy(v)) - 3, label, kBlack);
+  // Grid and ticks: y at powers of two (every one, or every n-th when there are many), x at every
+  // measured node count.
+  const int yLo = int(l.log2SpeedupLo), yHi = int(l.log2SpeedupHi);
+  const int yEvery = std::max(1, (yHi - yLo + 9) / 10);
+  for (int k = yLo; k <= yHi; k += yEvery) {
+    const float yk = l.y(std::ldexp(1.0, k));
+    drawLine(img, float(l.left), yk, float(l.right), yk, k == yLo ? kBlack : kGrey, 1);
+    const std::string label = powerOfTwoLabel(k);
+    drawText(img, l.left - 6 - textWidth(label), int(yk) - 3, label, kBlack);
   }
-  std::vector<int> ticks;
-  for (const auto& [size, points] : curves)
-    for (const auto& [p, s] : points) ticks.push_back(p);
+  drawLine(img, float(l.left), float(l.bottom), float(l.right), float(l.bottom), kBlack, 1);
   std::sort(ticks.begin(), ticks.end());
   ticks.erase(std::unique(ticks.begin(), ticks.end()), ticks.end());
   for (int p : ticks) {
-    drawLine(img, sx(p), float(top), sx(p), float(bottom), kGrey, 1);
-    drawLine(img, sx(p), float(bottom), sx(p), float(bottom + 4), kBlack, 1);
+    drawLine(img, l.x(p), float(l.top), l.x(p), float(l.bottom), kGrey, 1);
+    drawLine(img, l.x(p), float(l.bottom), l.x(p), float(l.bottom + 4), kBlack, 1);
     const std::string label = std::to_string(p);
-    drawText(img, int(sx(p)) - textWidth(label) / 2, bottom + 8, label, kBlack);
+    drawText(img, int(l.x(p)) - textWidth(label) / 2, l.bottom + 8, label, kBlack);
   }
-  drawLine(img, float(left), float(top), float(left), float(bottom), kBlack, 1);
-  drawText(img, (left + right - textWidth("NODES (LOG2)")) / 2, bottom + 22, "NODES (LOG2)", kBlack);
-  drawText(img, left - 40, 8, "MODELLED SPEEDUP - " + strategy, kBlack);
+  drawLine(img, float(l.left), float(l.top), float(l.left), float(l.bottom), kBlack, 1);
+  drawText(img, (l.left + l.right - textWidth("NODES (LOG2)")) / 2, l.bottom + 22, "NODES (LOG2)", kBlack);
+  drawText(img, l.left - 40, 8, "MODELLED SPEEDUP (LOG2) - " + strategy, kBlack);
 
-  // Ideal speedup = P, dashed, sampled finely because it is curved on a log2 x axis.
+  // Ideal speedup = P: a straight dashed diagonal on these axes.
+  const double pLo = std::exp2(l.log2NodesLo), pHi = std::exp2(l.log2NodesHi);
   float walked = 0.0f;
-  const int samples = 128;
-  for (int i = 0; i < samples; ++i) {
-    const double p0 = std::exp2(lo + (hi - lo) * i / samples), p1 = std::exp2(lo + (hi - lo) * (i + 1) / samples);
-    drawLine(img, sx(p0), sy(p0), sx(p1), sy(p1), kIdeal, 1, 5, &walked);
-  }
+  drawLine(img, l.x(pLo), l.y(pLo), l.x(pHi), l.y(pHi), kIdeal, 1, 5, &walked);
 
-  int index = 0, legendY = top + 4;
+  int index = 0, legendY = l.top + 4;
   for (const auto& [size, points] : curves) {
     const Rgba& c = kPalette[index++ % 6];
     for (std::size_t i = 0; i + 1 < points.size(); ++i)
-      drawLine(img, sx(points[i].first), sy(points[i].second), sx(points[i + 1].first), sy(points[i + 1].second), c, 2);
-    for (const auto& [p, s] : points) plot(img, int(sx(p)) - 2, int(sy(s)) - 2, c, 5);  // a 5x5 marker
-    drawLine(img, float(right + 12), float(legendY + 3), float(right + 32), float(legendY + 3), c, 2);
-    drawText(img, right + 38, legendY, std::to_string(size) + "X" + std::to_string(size), kBlack);
+      drawLine(img, l.x(points[i].first), l.y(points[i].second), l.x(points[i + 1].first), l.y(points[i + 1].second),
+               c, 2);
+    for (const auto& [p, s] : points) plot(img, int(l.x(p)) - 2, int(l.y(s)) - 2, c, 5);  // a 5x5 marker
+    drawLine(img, float(l.right + 12), float(legendY + 3), float(l.right + 32), float(legendY + 3), c, 2);
+    drawText(img, l.right + 38, legendY, std::to_string(size) + "X" + std::to_string(size), kBlack);
     legendY += 14;
   }
-  drawLine(img, float(right + 12), float(legendY + 3), float(right + 32), float(legendY + 3), kIdeal, 1, 3);
-  drawText(img, right + 38, legendY, "IDEAL", kBlack);
+  drawLine(img, float(l.right + 12), float(legendY + 3), float(l.right + 32), float(legendY + 3), kIdeal, 1, 3);
+  drawText(img, l.right + 38, legendY, "IDEAL", kBlack);
   return img;
 }
 
