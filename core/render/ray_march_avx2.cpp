@@ -7,10 +7,11 @@
 // -ffp-contract=off), so every lane rounds as the scalar code does and images are equal bit for
 // bit. With float storage a sample's eight corner voxels are 4-float vectors (value, gradient), so
 // interpolation runs on 4 lanes per sample, as TrilinearCell does (two samples per register); with
-// compact storage each (y, z) pair of x corners is one 16-byte load of 16-bit integers, widened to
-// eight floats, as interpolateCompact sums them. Either is then transposed into one register per
-// quantity; everything after it runs on eight samples per instruction. The march is a template on
-// the voxel type, so each format gets its own code without a test per sample.
+// compact storage each (y, z) pair of x corners is one 16-byte load of 16-bit integers, blended
+// along x in integers (exact) and then converted, as interpolateCompact does (four samples per
+// 512-bit register, two per 256-bit one). Either ends with one register per quantity; everything
+// after it runs on eight samples per instruction. The march is a template on the voxel type, so
+// each format gets its own code without a test per sample.
 #include "core/render/ray_march.h"
 
 #include <climits>
@@ -138,62 +139,74 @@ KDSWAP_AVX2 inline Directions8 sameDirection(const glm::vec3& d) {
   return Directions8{_mm256_set1_ps(d.x), _mm256_set1_ps(d.y), _mm256_set1_ps(d.z)};
 }
 
-//! interpolateCompact for eight samples: sample j's corner record at its floor is corner[j]; both
-//! x corners of each (y, z) pair come in one 16-byte load, widened to 32 bits and converted (exact),
-//! summed over (y, z) in eight lanes (face x | face x + 1), then the faces blended and added.
+//! The x and x + 1 records of a compact corner pair: one 16-byte load.
+KDSWAP_AVX2 inline __m128i pairOf(const CompactVoxel* x) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(x)); }
+
+//! interpolateCompact for eight samples: sample j's corner record at its floor is corner[j]. Both
+//! x corners of a (y, z) pair come in one 16-byte load; a byte shuffle pairs each quantity's two
+//! 16-bit words, and one multiply-add of 16-bit pairs (pmaddwd) blends them with the integer x
+//! weights, exactly, into 32 bits: four quantities of a sample in 128 bits. Then each pair is
+//! converted, weighted by its (y, z) weight (times 2^-14) and summed over the pairs in order.
 //! out[q]: component q (value, gradient x, y, z) of the eight samples, in lane order.
 KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, std::ptrdiff_t sy, std::ptrdiff_t sz,
-                                            __m256 fx, __m256 fy, __m256 fz, __m256 gx, __m256 gy, __m256 gz,
-                                            __m256* out) {
-  const __m256 yz[4] = {_mm256_mul_ps(gy, gz), _mm256_mul_ps(fy, gz), _mm256_mul_ps(gy, fz), _mm256_mul_ps(fy, fz)};
+                                            __m256 fx, __m256 fy, __m256 fz, __m256* out) {
+  const __m256 one = _mm256_set1_ps(1.0f), scale = _mm256_set1_ps(kCompactXWeightScale);
+  const __m256 gy = _mm256_sub_ps(one, fy), gz = _mm256_mul_ps(_mm256_sub_ps(one, fz), scale);
+  const __m256 fzScaled = _mm256_mul_ps(fz, scale);
+  const __m256 yz[4] = {_mm256_mul_ps(gy, gz), _mm256_mul_ps(fy, gz), _mm256_mul_ps(gy, fzScaled),
+                        _mm256_mul_ps(fy, fzScaled)};
+  // x weights (2^14 - w, w), w = fx * 2^14 rounded to nearest even, as one 32-bit word per sample:
+  // the low 16 bits multiply the x corner's word, the high 16 bits the x + 1 corner's.
+  const __m256i wx1 = _mm256_cvtps_epi32(_mm256_mul_ps(fx, _mm256_set1_ps(float(1 << kCompactXWeightBits))));
+  const __m256i wx0 = _mm256_sub_epi32(_mm256_set1_epi32(1 << kCompactXWeightBits), wx1);
+  const __m256i wx = _mm256_or_si256(wx0, _mm256_slli_epi32(wx1, 16));
+  // Words (v g0 g1 g2 | v' g0' g1' g2') of a corner pair to (v v' g0 g0' g1 g1' g2 g2').
+  const __m128i pairWords = _mm_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
   const std::ptrdiff_t at[4] = {0, sy, sz, sz + sy};
-  __m128 sample[kLanes];
 #if defined(KDSWAP_MARCH_AVX512VL)
-  // Two samples a register (j in the low 256 bits, j + 1 in the high): the same operations per
-  // lane, fewer instructions (turbulence 256^3, P = 64 and 512: 3-5% faster; the float format's pairs of
-  // pairs, tried the same way, were ~5% slower). The zero-masking forms with every lane set are
-  // the plain instructions; GCC 12's unmasked ones warn of an undefined pass-through operand.
+  // Four samples a register, one per 128-bit lane: samples 0-3, then 4-7. The zero-masking forms
+  // with every lane set are the plain instructions; GCC 12's unmasked ones warn of an undefined
+  // pass-through operand.
   constexpr __mmask16 kAll16 = 0xFFFF;
-  const __m512 xWeights = _mm512_insertf32x8(_mm512_castps256_ps512(gx), fx, 1);  // gx lanes 0-7, fx 8-15
-  for (int j = 0; j < kLanes; j += 2) {
-    const __m512i both = _mm512_set_epi32(j + 1, j + 1, j + 1, j + 1, j + 1, j + 1, j + 1, j + 1, j, j, j, j, j, j, j, j);
-    __m512 faces = _mm512_setzero_ps();
+  const __m512i shuffle = _mm512_maskz_broadcast_i32x4(kAll16, pairWords);
+  __m512 sums[2];
+  for (int h = 0; h < 2; ++h) {
+    const int j = 4 * h;
+    const __m512i spread = _mm512_set_epi32(j + 3, j + 3, j + 3, j + 3, j + 2, j + 2, j + 2, j + 2, j + 1, j + 1,
+                                            j + 1, j + 1, j, j, j, j);
+    const __m512i weights = _mm512_maskz_permutexvar_epi32(kAll16, spread, _mm512_castsi256_si512(wx));
     for (int c = 0; c < 4; ++c) {
-      const __m256i raw = _mm256_inserti128_si256(
-          _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(corner[j] + at[c]))),
-          _mm_loadu_si128(reinterpret_cast<const __m128i*>(corner[j + 1] + at[c])), 1);
-      const __m512 pair = _mm512_maskz_cvtepi32_ps(kAll16, _mm512_maskz_cvtepi16_epi32(kAll16, raw));
-      const __m512 term = _mm512_mul_ps(_mm512_maskz_permutexvar_ps(kAll16, both, _mm512_castps256_ps512(yz[c])), pair);
-      faces = c == 0 ? term : _mm512_add_ps(faces, term);
+      __m512i raw = _mm512_castsi128_si512(pairOf(corner[j] + at[c]));
+      raw = _mm512_inserti32x4(raw, pairOf(corner[j + 1] + at[c]), 1);
+      raw = _mm512_inserti32x4(raw, pairOf(corner[j + 2] + at[c]), 2);
+      raw = _mm512_inserti32x4(raw, pairOf(corner[j + 3] + at[c]), 3);
+      const __m512i blended = _mm512_maskz_madd_epi16(kAll16, _mm512_maskz_shuffle_epi8(0xFFFFFFFFFFFFFFFFull, raw, shuffle), weights);
+      const __m512 term = _mm512_mul_ps(_mm512_maskz_cvtepi32_ps(kAll16, blended),
+                                        _mm512_maskz_permutexvar_ps(kAll16, spread, _mm512_castps256_ps512(yz[c])));
+      sums[h] = c == 0 ? term : _mm512_add_ps(sums[h], term);
     }
-    // Lanes of sample j: gx_j x 4, fx_j x 4; of sample j + 1 the same with j + 1.
-    const __m512i xPick = _mm512_set_epi32(9 + j, 9 + j, 9 + j, 9 + j, j + 1, j + 1, j + 1, j + 1, 8 + j, 8 + j, 8 + j,
-                                           8 + j, j, j, j, j);
-    faces = _mm512_mul_ps(faces, _mm512_maskz_permutexvar_ps(kAll16, xPick, xWeights));
-    // face(x) + face(x + 1) of each sample: its two 128-bit quarters added (the sum commutes).
-    const __m512 sums =
-        _mm512_add_ps(faces, _mm512_maskz_shuffle_f32x4(kAll16, faces, faces, _MM_SHUFFLE(2, 3, 0, 1)));
-    sample[j] = _mm512_maskz_extractf32x4_ps(0xF, sums, 0);
-    sample[j + 1] = _mm512_maskz_extractf32x4_ps(0xF, sums, 2);
+  }
+  // Lane j of out[q] is quantity q of sample j: word 4j + q of samples 0-3, then of 4-7.
+  for (int q = 0; q < 4; ++q) {
+    const __m512i from = _mm512_setr_epi32(q, 4 + q, 8 + q, 12 + q, 16 + q, 20 + q, 24 + q, 28 + q, 0, 0, 0, 0, 0, 0, 0, 0);
+    out[q] = _mm512_maskz_extractf32x8_ps(0xFF, _mm512_maskz_permutex2var_ps(kAll16, sums[0], from, sums[1]), 0);
   }
 #else
-  for (int j = 0; j < kLanes; ++j) {
-    const __m256i lane = _mm256_set1_epi32(j);
-    __m256 faces = _mm256_setzero_ps();
-    for (int c = 0; c < 4; ++c) {
-      const __m256 pair = _mm256_cvtepi32_ps(
-          _mm256_cvtepi16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(corner[j] + at[c]))));
-      const __m256 term = _mm256_mul_ps(_mm256_permutevar8x32_ps(yz[c], lane), pair);
-      faces = c == 0 ? term : _mm256_add_ps(faces, term);
-    }
-    const __m256 blend = _mm256_blend_ps(_mm256_permutevar8x32_ps(gx, lane), _mm256_permutevar8x32_ps(fx, lane), 0xF0);
-    faces = _mm256_mul_ps(faces, blend);
-    sample[j] = _mm_add_ps(_mm256_castps256_ps128(faces), _mm256_extractf128_ps(faces, 1));
-  }
-#endif
+  // Two samples a register: j in the low half, j + 4 in the high half, as transposeHalves takes them.
+  const __m256i shuffle = _mm256_broadcastsi128_si256(pairWords);
   __m256 t[4];
-  for (int j = 0; j < 4; ++j) t[j] = _mm256_set_m128(sample[j + 4], sample[j]);
+  for (int j = 0; j < 4; ++j) {
+    const __m256i spread = _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4);
+    const __m256i weights = _mm256_permutevar8x32_epi32(wx, spread);
+    for (int c = 0; c < 4; ++c) {
+      const __m256i raw = _mm256_inserti128_si256(_mm256_castsi128_si256(pairOf(corner[j] + at[c])), pairOf(corner[j + 4] + at[c]), 1);
+      const __m256i blended = _mm256_madd_epi16(_mm256_shuffle_epi8(raw, shuffle), weights);
+      const __m256 term = _mm256_mul_ps(_mm256_cvtepi32_ps(blended), _mm256_permutevar8x32_ps(yz[c], spread));
+      t[j] = c == 0 ? term : _mm256_add_ps(t[j], term);
+    }
+  }
   transposeHalves(t, out);
+#endif
 }
 
 //! shadeSample (or shadeCompactSample) for eight samples at points (px, py, pz) with voxels
@@ -207,12 +220,12 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m25
   const __m256 fx = _mm256_sub_ps(px, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(px)));
   const __m256 fy = _mm256_sub_ps(py, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(py)));
   const __m256 fz = _mm256_sub_ps(pz, _mm256_cvtepi32_ps(_mm256_cvttps_epi32(pz)));
-  const __m256 gx = _mm256_sub_ps(one, fx), gy = _mm256_sub_ps(one, fy), gz = _mm256_sub_ps(one, fz);
   const std::ptrdiff_t sy = m.voxels.sy, sz = m.voxels.sz;
   __m256 q[4];
   if constexpr (std::is_same_v<VoxelT, CompactVoxel>) {
-    interpolateCompact8(corner, sy, sz, fx, fy, fz, gx, gy, gz, q);
+    interpolateCompact8(corner, sy, sz, fx, fy, fz, q);
   } else {
+    const __m256 gx = _mm256_sub_ps(one, fx), gy = _mm256_sub_ps(one, fy), gz = _mm256_sub_ps(one, fz);
     const __m256 w[8] = {
         _mm256_mul_ps(_mm256_mul_ps(gx, gy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, gy), gz),
         _mm256_mul_ps(_mm256_mul_ps(gx, fy), gz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), gz),

@@ -2,7 +2,9 @@
 // coordinates, for either storage format. The ray caster and the tests use these definitions.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "core/volume/brick.h"
 
@@ -65,27 +67,37 @@ struct TrilinearCell {
   }
 };
 
+//! The compact format's x weights are integers: fx * 2^14 rounded to nearest (even), and 2^14 minus
+//! it. Both x corners of a (y, z) pair are adjacent 8-byte records, one 16-byte load in the SIMD
+//! march, and with integer weights one multiply-add of 16-bit pairs (pmaddwd) blends them exactly,
+//! four samples to a 512-bit register, before anything is converted to float. |sum| <= 2^15 * 2^14.
+constexpr int kCompactXWeightBits = 14;
+//! 2^-14: the (y, z) weights carry it, so the result is in stored units (an exact power of two).
+constexpr float kCompactXWeightScale = 1.0f / float(1 << kCompactXWeightBits);
+
 //! The compact format's interpolation at p (floor = (int) p, inside the owned box): lane 0 the
-//! stored value, lanes 1-3 the stored gradient (VoxelStorage says what they stand for). The two
-//! voxels at x and x + 1 are adjacent 8-byte records, one 16-byte load in the SIMD march, so it
-//! sums each x face over (y, z) first, corners 00 10 01 11 with weights gy gz, fy gz, gy fz, fy fz,
-//! and then blends the faces: gx * face(x) + fx * face(x + 1).
+//! stored value, lanes 1-3 the stored gradient (VoxelStorage says what they stand for). Each (y, z)
+//! pair of corners 00 10 01 11 is blended along x in integers (kCompactXWeightBits), converted to
+//! float, weighted by gy gz, fy gz, gy fz, fy fz (each times 2^-14) and summed in that order.
 inline TrilinearCell::Lanes interpolateCompact(const VoxelAddressing& at, const glm::vec3& p, const glm::ivec3& floor) {
   using Lanes = TrilinearCell::Lanes;
   const CompactVoxel* v = at.compact + (at.origin + floor.z * at.sz + floor.y * at.sy + floor.x);
   const float fx = p.x - float(floor.x), fy = p.y - float(floor.y), fz = p.z - float(floor.z);
-  const float gx = 1.0f - fx, gy = 1.0f - fy, gz = 1.0f - fz;
-  const float yz[4] = {gy * gz, fy * gz, gy * fz, fy * fz};
+  const float gy = 1.0f - fy, gz = (1.0f - fz) * kCompactXWeightScale;
+  const float fzScaled = fz * kCompactXWeightScale;
+  const float yz[4] = {gy * gz, fy * gz, gy * fzScaled, fy * fzScaled};
+  const std::int32_t wx1 = std::int32_t(std::nearbyint(fx * float(1 << kCompactXWeightBits)));
+  const std::int32_t wx0 = (1 << kCompactXWeightBits) - wx1;
   const std::ptrdiff_t corner[4] = {0, at.sy, at.sz, at.sz + at.sy};
-  auto load = [](const CompactVoxel& c) {
-    return Lanes{float(c.value), float(c.gradient[0]), float(c.gradient[1]), float(c.gradient[2])};
+  auto blendX = [&](const CompactVoxel& a, const CompactVoxel& b) {
+    return Lanes{float(std::int32_t(a.value) * wx0 + std::int32_t(b.value) * wx1),
+                 float(std::int32_t(a.gradient[0]) * wx0 + std::int32_t(b.gradient[0]) * wx1),
+                 float(std::int32_t(a.gradient[1]) * wx0 + std::int32_t(b.gradient[1]) * wx1),
+                 float(std::int32_t(a.gradient[2]) * wx0 + std::int32_t(b.gradient[2]) * wx1)};
   };
-  Lanes face0 = yz[0] * load(v[0]), face1 = yz[0] * load(v[1]);
-  for (int c = 1; c < 4; ++c) {
-    face0 = face0 + yz[c] * load(v[corner[c]]);
-    face1 = face1 + yz[c] * load(v[corner[c] + 1]);
-  }
-  return face0 * gx + face1 * fx;
+  Lanes sum = yz[0] * blendX(v[0], v[1]);
+  for (int c = 1; c < 4; ++c) sum = sum + yz[c] * blendX(v[corner[c]], v[corner[c] + 1]);
+  return sum;
 }
 
 }  // namespace kdswap
