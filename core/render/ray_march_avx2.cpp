@@ -140,7 +140,9 @@ KDSWAP_AVX2 inline Directions8 sameDirection(const glm::vec3& d) {
 }
 
 //! The x and x + 1 records of a compact corner pair: one 16-byte load.
-KDSWAP_AVX2 inline __m128i pairOf(const CompactVoxel* x) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(x)); }
+KDSWAP_AVX2 inline __m128i pairOf(const CompactVoxel* x) {
+  return _mm_loadu_si128(reinterpret_cast<const __m128i*>(x));
+}
 
 //! interpolateCompact for eight samples: sample j's corner record at its floor is corner[j]. Both
 //! x corners of a (y, z) pair come in one 16-byte load; a byte shuffle pairs each quantity's two
@@ -180,7 +182,8 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
       raw = _mm512_inserti32x4(raw, pairOf(corner[j + 1] + at[c]), 1);
       raw = _mm512_inserti32x4(raw, pairOf(corner[j + 2] + at[c]), 2);
       raw = _mm512_inserti32x4(raw, pairOf(corner[j + 3] + at[c]), 3);
-      const __m512i blended = _mm512_maskz_madd_epi16(kAll16, _mm512_maskz_shuffle_epi8(0xFFFFFFFFFFFFFFFFull, raw, shuffle), weights);
+      const __m512i words = _mm512_maskz_shuffle_epi8(~__mmask64(0), raw, shuffle);
+      const __m512i blended = _mm512_maskz_madd_epi16(kAll16, words, weights);
       const __m512 term = _mm512_mul_ps(_mm512_maskz_cvtepi32_ps(kAll16, blended),
                                         _mm512_maskz_permutexvar_ps(kAll16, spread, _mm512_castps256_ps512(yz[c])));
       sums[h] = c == 0 ? term : _mm512_add_ps(sums[h], term);
@@ -188,7 +191,8 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
   }
   // Lane j of out[q] is quantity q of sample j: word 4j + q of samples 0-3, then of 4-7.
   for (int q = 0; q < 4; ++q) {
-    const __m512i from = _mm512_setr_epi32(q, 4 + q, 8 + q, 12 + q, 16 + q, 20 + q, 24 + q, 28 + q, 0, 0, 0, 0, 0, 0, 0, 0);
+    const __m512i from =
+        _mm512_setr_epi32(q, 4 + q, 8 + q, 12 + q, 16 + q, 20 + q, 24 + q, 28 + q, 0, 0, 0, 0, 0, 0, 0, 0);
     out[q] = _mm512_maskz_extractf32x8_ps(0xFF, _mm512_maskz_permutex2var_ps(kAll16, sums[0], from, sums[1]), 0);
   }
 #else
@@ -199,7 +203,8 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
     const __m256i spread = _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4);
     const __m256i weights = _mm256_permutevar8x32_epi32(wx, spread);
     for (int c = 0; c < 4; ++c) {
-      const __m256i raw = _mm256_inserti128_si256(_mm256_castsi128_si256(pairOf(corner[j] + at[c])), pairOf(corner[j + 4] + at[c]), 1);
+      const __m256i raw =
+          _mm256_inserti128_si256(_mm256_castsi128_si256(pairOf(corner[j] + at[c])), pairOf(corner[j + 4] + at[c]), 1);
       const __m256i blended = _mm256_madd_epi16(_mm256_shuffle_epi8(raw, shuffle), weights);
       const __m256 term = _mm256_mul_ps(_mm256_cvtepi32_ps(blended), _mm256_permutevar8x32_ps(yz[c], spread));
       t[j] = c == 0 ? term : _mm256_add_ps(t[j], term);
