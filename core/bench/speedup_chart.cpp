@@ -71,7 +71,7 @@ SpeedupChartLayout speedupChartLayout(const std::vector<BenchCell>& cells, const
   l.log2NodesHi = std::max(l.log2NodesLo + 1.0, std::log2(double(pMax)));
   // The y range holds the ideal line (speedup = P over the measured counts) and every measured
   // speedup, widened to whole powers of two; a speedup below 1 (nodes that cost more than they
-  // save) gets its own decade below the baseline rather than being cut off.
+  // save) gets its own power of two below the baseline rather than being cut off.
   const double lowest = std::min(double(pMin), sMin), highest = std::max(double(pMax), sMax);
   l.log2SpeedupLo = std::floor(std::log2(lowest) + 1e-9);
   l.log2SpeedupHi = std::max(l.log2SpeedupLo + 1.0, std::ceil(std::log2(highest) - 1e-9));
