@@ -335,9 +335,12 @@ Rect RayCaster::renderRegion(const Camera& camera, const Rect& region, Image& im
     xs[pending] = x, ys[pending] = y;
     if (++pending == kBatch) march();
   };
-  // Runs of eight pixels: their rays are set up together where AVX2 allows (ray_setup.h).
-  for (int y = region.y; y < region.bottom(); ++y)
-    for (int x0 = region.x; x0 < region.right(); x0 += 8) {
+  // Runs of eight pixels: their rays are set up together where AVX2 allows (ray_setup.h). The
+  // region is walked in columns one run wide, row by row down each: a batch of 64 rays is then an
+  // 8 x 8 block of pixels, whose rays cross much the same voxels, rather than two rows of a
+  // 32-pixel piece (the phantom at P = 64 with waves 1-3% faster).
+  for (int x0 = region.x; x0 < region.right(); x0 += 8)
+    for (int y = region.y; y < region.bottom(); ++y) {
       const int n = std::min(8, region.right() - x0);
       long occludedFrom[8];
       int live = 0;  // bit j: pixel x0 + j needs its ray set up
