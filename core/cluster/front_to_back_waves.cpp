@@ -28,6 +28,7 @@ constexpr int kWaveCell = 32;
 struct BrickInWaves {
   std::once_flag made;
   std::unique_ptr<RayCaster> caster;
+  CellCoverage coverage;  //!< the pixels whose rays can meet the brick's visible cells
   std::atomic<int> piecesLeft{0};
 };
 
@@ -72,10 +73,12 @@ std::vector<RenderedBrick> renderInWaves(std::vector<NodeState>& nodes, const Fr
     times[p].start = nowSeconds();
     std::call_once(brick.made, [&] {
       brick.caster = ownBrickCaster(nodes[rank], plan, &front);
+      brick.coverage = brick.caster->coverage(plan.camera);
       rendered[rank].image = Image(rects[piece.brick]);
     });
     // Dims `front` where it rendered (only pieces waiting for this one read those pixels).
-    times[p].content = brick.caster->renderRegion(plan.camera, piece.rect, rendered[rank].image, times[p].counters);
+    times[p].content =
+        brick.caster->renderRegion(plan.camera, piece.rect, rendered[rank].image, times[p].counters, &brick.coverage);
     times[p].end = nowSeconds();
     if (brick.piecesLeft.fetch_sub(1, std::memory_order_acq_rel) == 1 && plan.nodesRendered)
       plan.nodesRendered->fetch_add(1, std::memory_order_relaxed);  // progress display

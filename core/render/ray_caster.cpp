@@ -263,6 +263,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters, Rect* co
   const Rect rect = screenRect(camera);  // empty when nothing in the brick is visible
   Image image(rect);
   if (rect.empty()) return image;
+  const CellCoverage cover = coverage(camera);
   tbb::combinable<RenderCounters> perThread;
   tbb::combinable<Rect> contentPerThread;
   // Isolation: a thread waiting here must not pick up another node's task (it could suspend on
@@ -273,7 +274,7 @@ Image RayCaster::render(const Camera& camera, RenderCounters& counters, Rect* co
                         const int x = tile.cols().begin(), y = tile.rows().begin();
                         const Rect region{x, y, tile.cols().end() - x, tile.rows().end() - y};
                         Rect& bounds = contentPerThread.local();
-                        bounds = bounds.unite(renderRegion(camera, region, image, perThread.local()));
+                        bounds = bounds.unite(renderRegion(camera, region, image, perThread.local(), &cover));
                       });
   });
   if (content) contentPerThread.combine_each([&](const Rect& r) { *content = content->unite(r); });
@@ -285,7 +286,12 @@ Rect RayCaster::screenRect(const Camera& camera) const {
   return emptySpace_->anyVisible() ? screenRect(*emptySpace_, brick_.spacing(), camera) : Rect{};
 }
 
-Rect RayCaster::renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& local) const {
+CellCoverage RayCaster::coverage(const Camera& camera) const {
+  return CellCoverage(brick_, *emptySpace_, camera, screenRect(camera));
+}
+
+Rect RayCaster::renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& local,
+                             const CellCoverage* coverage) const {
   KDSWAP_CHECK(image.rect().contains(region));
   if (region.empty() || !emptySpace_->anyVisible()) return Rect{};
   const double start = nowSeconds();
@@ -342,19 +348,23 @@ Rect RayCaster::renderRegion(const Camera& camera, const Rect& region, Image& im
   for (int x0 = region.x; x0 < region.right(); x0 += 8)
     for (int y = region.y; y < region.bottom(); ++y) {
       const int n = std::min(8, region.right() - x0);
+      // Pixels whose rays can meet no visible cell take no ray: not set up, not counted.
+      const int covered = ((1 << n) - 1) & (coverage ? coverage->eight(x0, y) : 0xFF);
+      if (covered == 0) continue;
       long occludedFrom[8];
       int live = 0;  // bit j: pixel x0 + j needs its ray set up
       if (occlusion_ == nullptr) {
         // Only the light in front (waves) can stop a pixel's ray before this brick: eight
         // pixels tested at once, no branch per pixel (a 64-node frame tests each pixel
         // once per brick whose rectangle holds it).
-        const int spent = front_ ? front_->spentIn(x0, y, n, march_.stopTransmittance) : 0;
-        live = ((1 << n) - 1) & ~spent;
+        const int spent = (front_ ? front_->spentIn(x0, y, n, march_.stopTransmittance) : 0) & covered;
+        live = covered & ~spent;
         const int stopped = bitsSet8(spent);
         local.rays += std::uint64_t(stopped), local.occluded += std::uint64_t(stopped);
         for (int j = 0; j < 8; ++j) occludedFrom[j] = OcclusionGrid::kNever;
       } else {
         for (int j = 0; j < n; ++j) {
+          if (!(covered >> j & 1)) continue;
           occludedFrom[j] = occlusion_->occludedFrom(x0 + j, y);
           if (front_ && front_->at(x0 + j, y) <= march_.stopTransmittance) occludedFrom[j] = 0;  // stopped in front
           if (occludedFrom[j] <= firstPossible)  // ends before the brick: no ray to set up

@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/camera/camera.h"
+#include "core/render/cell_coverage.h"
 #include "core/render/empty_space_map.h"
 #include "core/render/front_transmittance.h"
 #include "core/render/occlusion_map.h"
@@ -24,7 +25,9 @@
 namespace kdswap {
 
 struct RenderCounters {
-  std::uint64_t rays = 0;     //!< rays that met the brick (culled ones counted, even if they would miss it)
+  //! Rays that met the brick (culled ones counted, even if they would miss it). With a
+  //! CellCoverage (render always uses one), rays whose pixel it leaves out are not counted.
+  std::uint64_t rays = 0;
   std::uint64_t samples = 0;  //!< samples taken inside the brick
   std::uint64_t occluded = 0; //!< rays skipped: opaque matter in front of the brick ends them
   double seconds = 0.0;       //!< work time, summed over tiles (time on one processor)
@@ -62,12 +65,16 @@ class RayCaster {
 
   //! The rectangle render's image covers (screenRect of the brick's visible box; empty when none).
   Rect screenRect(const Camera& camera) const;
+  //! The pixels of screenRect(camera) whose rays can meet a visible cell (the others need no ray).
+  CellCoverage coverage(const Camera& camera) const;
 
   //! render's pixels of `region` only, into `image` (over the rectangle render would cover, or
   //! holding `region`), on the calling thread; adds to `counters`. Pixels of a region are
-  //! the same as render's: waves render a brick one screen cell at a time with it. Returns the
-  //! bounds of the region's pixels it left with opacity above 0.
-  Rect renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& counters) const;
+  //! the same as render's: waves render a brick one screen cell at a time with it. With
+  //! `coverage` (this caster's, for `camera`), pixels it leaves out get no ray; the counters then
+  //! equal render's too. Returns the bounds of the region's pixels it left with opacity above 0.
+  Rect renderRegion(const Camera& camera, const Rect& region, Image& image, RenderCounters& counters,
+                    const CellCoverage* coverage = nullptr) const;
 
   //! One pixel: premultiplied colour and opacity of this brick's segment of the ray, from its
   //! samples with lattice index below `occludedFrom`.
