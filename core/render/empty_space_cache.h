@@ -21,7 +21,7 @@ class EmptySpaceCache {
   void clear() { map_.reset(); }
 
  private:
-  std::vector<int> visibleCounts_;
+  TransferTable::VisibleMask visibleMask_{};
   float scale_ = 0.0f, bias_ = 0.0f;
   bool enabled_ = false;
   std::shared_ptr<const EmptySpaceMap> map_;

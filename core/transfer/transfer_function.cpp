@@ -141,7 +141,11 @@ TransferTable::TransferTable(const TransferFunction& tf, float stepVoxels) : ent
   }
   entries_[kSize] = entries_[kSize - 1];
   visibleBefore_.assign(kSize + 1, 0);
-  for (int i = 0; i < kSize; ++i) visibleBefore_[i + 1] = visibleBefore_[i] + (entries_[i].a > 0.0f ? 1 : 0);
+  for (int i = 0; i < kSize; ++i) {
+    const bool visible = entries_[i].a > 0.0f;
+    visibleBefore_[i + 1] = visibleBefore_[i] + (visible ? 1 : 0);
+    visibleMask_[std::size_t(i / 64)] |= std::uint64_t(visible) << (i % 64);
+  }
   minAlphaRuns_.emplace_back(kSize);
   for (int i = 0; i < kSize; ++i) minAlphaRuns_[0][std::size_t(i)] = entries_[std::size_t(i)].a;
   for (int len = 2; len <= kSize; len *= 2) {
