@@ -102,6 +102,14 @@ TEST_CASE("cell coverage: an eye inside the volume, or a brick all visible, cove
     if (p == Projection::Perspective) CHECK(caster.coverage(camera).coversAll());
     checkLeftOut(caster, camera);
   }
+  // No visible cell: nothing is covered, whatever rectangle it is asked for.
+  const auto clear = test::makeVolume({12, 10, 9}, [](int, int, int) { return 0.0f; });
+  const Brick empty = wholeVolumeBrick(*clear);
+  const EmptySpaceMap none(empty, table, 1.0f, 0.0f);
+  REQUIRE(!none.anyVisible());
+  const CellCoverage nothing(empty, none, s.camera(View{}, 20, 20), Rect{0, 0, 20, 20});
+  CHECK(nothing.coveredPixels() == 0);
+  for (int y = -1; y <= 20; ++y) CHECK(nothing.eight(-3, y) == 0);
   // Every cell visible: nothing to leave out, so nothing is built.
   const auto flat = test::makeVolume({20, 18, 16}, [](int x, int, int) { return 0.5f + 0.01f * float(x); });
   const Brick solid = wholeVolumeBrick(*flat);

@@ -24,7 +24,10 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
   // A brick whose cells are all visible would cover its whole rectangle anyway.
   if (emptySpace.allVisible()) return;
   all_ = false;
-  if (rect.empty() || !emptySpace.anyVisible()) return;  // covers nothing
+  if (rect.empty() || !emptySpace.anyVisible()) {  // covers nothing
+    rect_ = Rect{};
+    return;
+  }
   wordsPerRow_ = (rect.w + 63) / 64 + 1;
   bits_.assign(std::size_t(wordsPerRow_) * std::size_t(rect.h), 0);
 
