@@ -55,8 +55,7 @@ std::optional<glm::vec2> Camera::project(const glm::vec3& world) const {
     sx /= depth;
     sy /= depth;
   }
-  return glm::vec2((sx / (aspect_ * halfHeight_) + 1.0f) * 0.5f * float(width_),
-                   (1.0f - sy / halfHeight_) * 0.5f * float(height_));
+  return pixelOfPlanePoint(sx, sy);
 }
 
 Rect Camera::projectBox(const glm::vec3& lo, const glm::vec3& hi) const {
@@ -70,6 +69,11 @@ Rect Camera::projectBox(const glm::vec3& lo, const glm::vec3& hi) const {
     minX = std::min(minX, px), maxX = std::max(maxX, px);
     minY = std::min(minY, py), maxY = std::max(maxY, py);
   }
+  return conservativePixels(glm::vec2(minX, minY), glm::vec2(maxX, maxY));
+}
+
+Rect Camera::conservativePixels(glm::vec2 lo, glm::vec2 hi) const {
+  float minX = lo.x, minY = lo.y, maxX = hi.x, maxY = hi.y;
   const float limit = 4.0f * float(std::max(width_, height_)) + 4.0f;  // keeps int conversion defined
   minX = std::clamp(minX, -limit, limit), maxX = std::clamp(maxX, -limit, limit);
   minY = std::clamp(minY, -limit, limit), maxY = std::clamp(maxY, -limit, limit);

@@ -43,6 +43,15 @@ class Camera {
   std::optional<glm::vec2> project(const glm::vec3& world) const;
   //! Conservative pixel rectangle (clipped to the frame) covering the projection of a world box.
   Rect projectBox(const glm::vec3& lo, const glm::vec3& hi) const;
+  //! The last steps of project(): pixel coordinates of a point at (sx, sy) along right and up in
+  //! the image plane one unit in front of the eye (already divided by depth for perspective).
+  glm::vec2 pixelOfPlanePoint(float sx, float sy) const {
+    return glm::vec2((sx / (aspect_ * halfHeight_) + 1.0f) * 0.5f * float(width_),
+                     (1.0f - sy / halfHeight_) * 0.5f * float(height_));
+  }
+  //! The last step of projectBox(): the pixels whose centres may lie in [lo, hi] (projected pixel
+  //! coordinates), with a pixel of slack on each side for rounding, clipped to the frame.
+  Rect conservativePixels(glm::vec2 lo, glm::vec2 hi) const;
 
   //! What ray() computes from: setups that compute several rays at once (core/render/ray_setup.h)
   //! repeat its arithmetic exactly, operation by operation.

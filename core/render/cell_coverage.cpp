@@ -79,7 +79,6 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
   }
   const int lx = groups.x + 1, ly = groups.y + 1, lz = groups.z + 1;
   std::vector<glm::vec2> pixel(std::size_t(lx) * std::size_t(ly) * std::size_t(lz));
-  const float halfWidth = 0.5f * float(camera.width()), halfHeight = 0.5f * float(camera.height());
   for (int k = 0; k < lz; ++k)
     for (int j = 0; j < ly; ++j)
       for (int i = 0; i < lx; ++i) {
@@ -92,7 +91,7 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
           }
           sx /= t.z, sy /= t.z;
         }
-        const glm::vec2 p((sx / (b.aspect * b.halfHeight) + 1.0f) * halfWidth, (1.0f - sy / b.halfHeight) * halfHeight);
+        const glm::vec2 p = camera.pixelOfPlanePoint(sx, sy);
         if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
           coverAll();
           return;
@@ -101,7 +100,6 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
       }
 
   // [Rectangles] Each visible group's bounding rectangle, with projectBox's pixel of slack.
-  const float limit = 4.0f * float(std::max(camera.width(), camera.height())) + 4.0f;
   for (int gz = 0; gz < groups.z; ++gz)
     for (int gy = 0; gy < groups.y; ++gy)
       for (int gx = 0; gx < groups.x; ++gx) {
@@ -112,10 +110,7 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
           const glm::vec2 p = pixel[(std::size_t(k) * std::size_t(ly) + std::size_t(j)) * std::size_t(lx) + std::size_t(i)];
           lo = glm::min(lo, p), hi = glm::max(hi, p);
         }
-        lo = glm::clamp(lo, -limit, limit), hi = glm::clamp(hi, -limit, limit);
-        const int x0 = int(std::floor(lo.x)) - 1, y0 = int(std::floor(lo.y)) - 1;
-        const int x1 = int(std::ceil(hi.x)) + 1, y1 = int(std::ceil(hi.y)) + 1;
-        cover(Rect{x0, y0, x1 - x0, y1 - y0}.intersect(rect));
+        cover(camera.conservativePixels(lo, hi).intersect(rect));
       }
 }
 
