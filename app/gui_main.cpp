@@ -21,8 +21,16 @@ int main(int argc, char** argv) {
       "kdswap-gui: explore data-distributed volume rendering with binary-swap compositing\n"
       "(Ma, Painter, Hansen & Krogh 1993) on P virtual nodes: the final image, every node's partial\n"
       "image after each compositing phase (the paper's Figure 6), the transfer function and timings.\n"};
-  app.add_option("--dataset,-d", o.dataset, "Built-in data set NAME[:SIZE] (phantom, vessels, turbulence) or a volume file")
-      ->capture_default_str();
+  std::string volume;
+  CLI::Option* datasetOption =
+      app.add_option("--dataset,-d", o.dataset,
+                     "Built-in data set NAME[:SIZE] (phantom, vessels, turbulence); a volume file works here too")
+          ->capture_default_str();
+  // --volume as in `kdswap render`, so a command line carries over from one program to the other.
+  app.add_option("--volume", volume,
+                 "Volume file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, legacy .vtk, or .raw (layout from --raw-* or a "
+                 "name like head_256x256x113_uint16.raw)")
+      ->excludes(datasetOption);
   kdswap::RawLayoutOptions raw;
   kdswap::addRawLayoutOptions(&app, raw);
   app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P, 1.." + std::to_string(kdswap::kMaxNodes))
@@ -68,7 +76,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Mouse: drag to orbit, right-drag to pan, wheel to zoom, R to reset the view.\n"
       "Example: kdswap-gui --dataset phantom:128 --nodes 8\n"
-      "Raw file: kdswap-gui --dataset scan.raw --raw-dims 256x256x113 --raw-type uint16\n"
+      "Volume file: kdswap-gui --volume ../shared/data/cthead.nhdr --nodes 16\n"
+      "Raw file: kdswap-gui --volume scan.raw --raw-dims 256x256x113 --raw-type uint16\n"
       "Headless: xvfb-run -a -s \"-screen 0 1600x1000x24\" kdswap-gui --screenshot shot.png --frames 30\n"
       "Measure: kdswap-gui --frames 300 --report-fps fps.json");
   try {
@@ -79,6 +88,10 @@ int main(int argc, char** argv) {
     if (app.count("--frames") && o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
     if (!o.screenshot.empty() && o.frames == 0 && o.script.empty()) o.frames = 30;
     if (!o.layout.empty() && o.screenshot.empty()) throw kdswap::Error("--layout needs --screenshot");
+    if (app.count("--volume")) {
+      if (volume.empty()) throw kdswap::Error("--volume: expected a file name");
+      o.dataset = volume;
+    }
     if (kdswap::isDatasetSpec(o.dataset)) kdswap::checkNoRawLayout(raw, "--dataset " + o.dataset);
     o.raw = kdswap::parseRawLayout(raw);  // also without --raw-*: a raw file missing its layout then names them
     return kdswap::runGui(o);

@@ -136,11 +136,29 @@ kdswap_cli_case(BenchInterleavedProgressInALogHasALinePerCellEnded CODE 0
                 EXPECT "^\\[0/2 cells\\] [^[]*\\[1/2 cells\\] [^[]*\\[2/2 cells\\] [^[]*$"
                 ARGS bench --dataset phantom:16 --sizes 16 --nodes 1,2 --frames 3 --interleave --out-dir b)
 
+# A volume file given to --dataset (kdswap-gui takes files there) names the way to open it; a name
+# that is no file and no data set keeps the list of data sets.
+kdswap_cli_case(RenderFileInDatasetNamesVolume
+                EXPECT "^kdswap: --dataset .data/head\\.nhdr.: not a built-in data set \\(phantom, turbulence, vessels\\); a volume file is opened with --volume data/head\\.nhdr\n$"
+                ARGS render --dataset data/head.nhdr --size 16x16 --out o.png)
+kdswap_cli_case(BenchFileInDatasetNamesVolume EXPECT "a volume file is opened with --volume scan\\.raw"
+                ARGS bench --dataset scan.raw --sizes 16 --nodes 1 --frames 1)
+kdswap_cli_case(ExportFileInDatasetNamesVolume EXPECT "a volume file is opened with --volume scan\\.raw"
+                ARGS export --dataset scan.raw --out o.nrrd)
+kdswap_cli_case(InfoFileInDatasetNamesItsArgument EXPECT "a volume file is opened with kdswap info scan\\.raw"
+                ARGS info --dataset scan.raw)
+kdswap_cli_case(RenderUnknownDatasetListsTheDataSets
+                EXPECT "data set .foo.: unknown \\(built-in data sets: phantom, turbulence, vessels\\)"
+                ARGS render --dataset foo --size 16x16 --out o.png)
+
 # The GUI's help is complete without the sources: every strategy, the node range, the script format.
 if(TARGET kdswap-gui)
   kdswap_cli_case(GuiHelpListsStrategiesNodeRangeAndScriptCommands PROGRAM kdswap-gui CODE 0
                   STDOUT "P, 1\\.\\.4096.*binary-swap, binary-tree, sequential, direct-send, radix-k, 2-3-swap, telescoping.*move TARGET. glide DX DY FRAMES"
                   FORBID "input_script\\.h|binary-swap, \\.\\.\\." ARGS --help)
+  # --volume as in kdswap render; with --dataset as well, which one to open is not guessed.
+  kdswap_cli_case(GuiVolumeAndDatasetTogetherAreRefused PROGRAM kdswap-gui
+                  EXPECT "kdswap-gui: --dataset excludes --volume" ARGS --volume scan.raw --dataset phantom:16)
   # Checked before any window opens, so it needs no display.
   kdswap_cli_case(GuiRefinePassesOutsideTheirRangeAreRefused PROGRAM kdswap-gui
                   EXPECT "kdswap-gui: --refine 0: expected 1\\.\\.64" ARGS --refine 0)

@@ -1,12 +1,13 @@
 # kdswap-gui opens a headerless .raw file with the --raw-* options, and without them says which
-# options are missing. Called by CTest with -DXVFB_RUN= -DGUI= -DOUT= (see ui/CMakeLists.txt).
+# options are missing. The file comes by --volume (as in `kdswap render`), then by --dataset, which
+# the app also takes files in. Called by CTest with -DXVFB_RUN= -DGUI= -DOUT= (see ui/CMakeLists.txt).
 file(MAKE_DIRECTORY ${OUT})
 # 8 x 8 x 8 uint8 voxels whose name gives no layout: 512 bytes of text make a varying volume.
 string(REPEAT "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdef" 16 voxels)
 file(WRITE ${OUT}/scan.raw "${voxels}")
 set(state ${OUT}/state.json)
 file(REMOVE ${state})
-set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --dataset scan.raw --raw-dims 8x8x8 --raw-type uint8
+set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --volume scan.raw --raw-dims 8x8x8 --raw-type uint8
             --nodes 4 --screenshot ${OUT}/shot.png --frames 5 --dump-state ${state})
 execute_process(COMMAND ${command} WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
 string(REPLACE ";" " " shown "${command}")
