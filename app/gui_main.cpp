@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--tf", o.tf, "Transfer-function preset or JSON file (default: the data set's preset)");
   app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels, 16..4096")->capture_default_str();
+  app.add_option("--up", o.up,
+                 "Volume axis pointing up on screen: +x -x +y -y +z -z (as kdswap render; also a list under Rendering)")
+      ->capture_default_str();
   app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();
   app.add_option("--screenshot", o.screenshot,
                  "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed "
@@ -76,7 +79,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Mouse: drag to orbit, right-drag to pan, wheel to zoom, R to reset the view.\n"
       "Example: kdswap-gui --dataset phantom:128 --nodes 8\n"
-      "Volume file: kdswap-gui --volume ../shared/data/cthead.nhdr --nodes 16\n"
+      "Volume file: kdswap-gui --volume ../shared/data/cthead.nhdr --up -z --nodes 16\n"
       "Raw file: kdswap-gui --volume scan.raw --raw-dims 256x256x113 --raw-type uint16\n"
       "Headless: xvfb-run -a -s \"-screen 0 1600x1000x24\" kdswap-gui --screenshot shot.png --frames 30\n"
       "Measure: kdswap-gui --frames 300 --report-fps fps.json");

@@ -160,6 +160,8 @@ if(TARGET kdswap-gui)
   kdswap_cli_case(GuiVolumeAndDatasetTogetherAreRefused PROGRAM kdswap-gui
                   EXPECT "kdswap-gui: --dataset excludes --volume" ARGS --volume scan.raw --dataset phantom:16)
   # Checked before any window opens, so it needs no display.
+  kdswap_cli_case(GuiUnknownUpAxisIsRefused PROGRAM kdswap-gui
+                  EXPECT "kdswap-gui: --up .q.: expected one of \\+x -x \\+y -y \\+z -z" ARGS --up q)
   kdswap_cli_case(GuiRefinePassesOutsideTheirRangeAreRefused PROGRAM kdswap-gui
                   EXPECT "kdswap-gui: --refine 0: expected 1\\.\\.64" ARGS --refine 0)
 endif()

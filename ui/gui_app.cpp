@@ -97,6 +97,7 @@ void initState(GuiState& state, const GuiOptions& o) {
   if (o.nodes < 1 || o.nodes > kMaxNodes) throw Error("--nodes " + std::to_string(o.nodes) + ": expected 1.." + std::to_string(kMaxNodes));
   if (o.imageSize < 16 || o.imageSize > 4096) throw Error("--image-size " + std::to_string(o.imageSize) + ": expected 16..4096");
   state.request.width = state.request.height = o.imageSize;
+  state.request.view.up = parseUpAxis(o.up, "--up");
   const std::string preset = o.tf.empty() ? presetFor(o.dataset) : o.tf;
   state.request.transfer = loadTransferFunction(preset.empty() ? "grayscale" : preset);
   state.tfEdited = !o.tf.empty();

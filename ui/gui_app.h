@@ -20,6 +20,7 @@ struct GuiOptions {
   int refinePasses = 8;                 //!< GuiState::refinePasses, 1..kMaxRefinePasses
   std::string tf;                       //!< preset name or JSON path; empty: the data set's preset
   int imageSize = 512;                  //!< rendered frame is imageSize x imageSize
+  std::string up = "+z";                //!< volume axis up on screen (parseUpAxis); R keeps it
   int windowWidth = 1600, windowHeight = 1000;
   std::string screenshot;               //!< write the window to this PNG before exiting
   int frames = 0;                       //!< > 0: exit after this many UI frames once the first full frame is shown

@@ -1,13 +1,14 @@
 # kdswap-gui opens a headerless .raw file with the --raw-* options, and without them says which
 # options are missing. The file comes by --volume (as in `kdswap render`), then by --dataset, which
-# the app also takes files in. Called by CTest with -DXVFB_RUN= -DGUI= -DOUT= (see ui/CMakeLists.txt).
+# the app also takes files in; --up sets the view's up axis. Called by CTest with -DXVFB_RUN= -DGUI=
+# -DOUT= (see ui/CMakeLists.txt).
 file(MAKE_DIRECTORY ${OUT})
 # 8 x 8 x 8 uint8 voxels whose name gives no layout: 512 bytes of text make a varying volume.
 string(REPEAT "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdef" 16 voxels)
 file(WRITE ${OUT}/scan.raw "${voxels}")
 set(state ${OUT}/state.json)
 file(REMOVE ${state})
-set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --volume scan.raw --raw-dims 8x8x8 --raw-type uint8
+set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --volume scan.raw --raw-dims 8x8x8 --raw-type uint8 --up -y
             --nodes 4 --screenshot ${OUT}/shot.png --frames 5 --dump-state ${state})
 execute_process(COMMAND ${command} WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
 string(REPLACE ";" " " shown "${command}")
@@ -21,6 +22,10 @@ string(JSON dims GET "${json}" final data dims)
 string(REGEX REPLACE "[ \n\t]" "" dims "${dims}")
 if(NOT spec STREQUAL "scan.raw" OR NOT type STREQUAL "uint8" OR NOT dims STREQUAL "[8,8,8]")
   message(FATAL_ERROR "expected scan.raw as 8x8x8 uint8 on screen, the state says ${spec} ${dims} ${type}")
+endif()
+string(JSON up GET "${json}" final view up)
+if(NOT up STREQUAL "-y")
+  message(FATAL_ERROR "--up -y: the state's view has up ${up}")
 endif()
 
 # Without the layout: one line naming the options, exit code 2. The app's own exit code is
