@@ -167,7 +167,8 @@ void runGrid(const BenchOptions& o, const MachineInfo& machine) {
   if (o.volume.empty()) checkNoRawLayout(o.raw, "--dataset " + dataset + (o.dataset.empty() ? " (the default)" : ""));
   const RawLayout layout = parseRawLayout(o.raw);
 
-  std::unique_ptr<VolumeSource> source = o.volume.empty() ? openDatasetOption(dataset, "--volume") : openVolumeFile(o.volume, layout);
+  std::unique_ptr<VolumeSource> source =
+      o.volume.empty() ? openDatasetOption(dataset, "--volume") : openVolumeFile(o.volume, layout);
   if (spacing) source = std::make_unique<RespacedSource>(std::move(source), *spacing);
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   const VolumeInfo& info = source->info();
