@@ -168,7 +168,7 @@ void runGrid(const BenchOptions& o, const MachineInfo& machine) {
   const RawLayout layout = parseRawLayout(o.raw);
 
   std::unique_ptr<VolumeSource> source =
-      o.volume.empty() ? openDatasetOption(dataset, "--volume") : openVolumeFile(o.volume, layout);
+      o.volume.empty() ? openDatasetOption(dataset) : openVolumeFile(o.volume, layout);
   if (spacing) source = std::make_unique<RespacedSource>(std::move(source), *spacing);
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   const VolumeInfo& info = source->info();

@@ -41,7 +41,7 @@ void runExport(const ExportOptions& o) {
   const RawLayout layout = parseRawLayout(o.raw);
   checkOutputFiles({{"--out", o.out}}, {});  // the input may be replaced: the file is written beside it, then renamed
   std::unique_ptr<VolumeSource> source =
-      o.volume.empty() ? openDatasetOption(o.dataset, "--volume") : openVolumeFile(o.volume, layout);
+      o.volume.empty() ? openDatasetOption(o.dataset) : openVolumeFile(o.volume, layout);
   if (!o.spacing.empty()) source = std::make_unique<RespacedSource>(std::move(source), parseSpacing(o.spacing, "--spacing"));
   if (o.quantise) source = std::make_unique<QuantisedSource>(std::move(source), o.quantise);
   // Default type: the quantised width (exact: the values are those levels), else float32 (exact

@@ -29,7 +29,7 @@ void runInfo(const InfoOptions& o) {
   if (o.bins < 1 || o.bins > 1024) throw Error("--bins " + std::to_string(o.bins) + ": expected 1 to 1024");
   if (!o.dataset.empty()) checkNoRawLayout(o.raw, "--dataset " + o.dataset);
   const std::unique_ptr<VolumeSource> source =
-      o.file.empty() ? openDatasetOption(o.dataset, "kdswap info") : openVolumeFile(o.file, parseRawLayout(o.raw));
+      o.file.empty() ? openDatasetOption(o.dataset) : openVolumeFile(o.file, parseRawLayout(o.raw));
   const VolumeSummary summary = summarizeVolume(*source, o.bins);
   if (o.json)
     std::printf("%s\n", summaryToJson(summary).dump(2).c_str());

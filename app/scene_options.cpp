@@ -276,15 +276,15 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& o) {
       ->group("Testing");
 }
 
-std::unique_ptr<VolumeSource> openDatasetOption(const std::string& spec, const std::string& fileCommand) {
+std::unique_ptr<VolumeSource> openDatasetOption(const std::string& spec) {
   const std::string name = spec.substr(0, spec.find(':'));
   std::error_code ec;
   const bool looksLikeFile = name.find_first_of("/.") != std::string::npos || std::filesystem::exists(spec, ec);
   if (!isDatasetSpec(spec) && looksLikeFile) {
     std::string names;
     for (const std::string& n : datasetNames()) names += (names.empty() ? "" : ", ") + n;
-    throw Error("--dataset \"" + spec + "\": not a built-in data set (" + names + "); a volume file is opened with " +
-                fileCommand + " " + spec);
+    throw Error("--dataset \"" + spec + "\": not a built-in data set (" + names +
+                "); a volume file is opened with --volume " + spec);
   }
   return openDataset(spec);
 }
@@ -296,7 +296,7 @@ Scene buildScene(const SceneOptions& o) {
     scene.source = openVolumeFile(o.volume, parseRawLayout(o.raw));
   } else {
     checkNoRawLayout(o.raw, "--dataset " + (o.dataset.empty() ? kDefaultDataset + std::string(" (the default)") : o.dataset));
-    scene.source = openDatasetOption(o.dataset.empty() ? kDefaultDataset : o.dataset, "--volume");
+    scene.source = openDatasetOption(o.dataset.empty() ? kDefaultDataset : o.dataset);
   }
   if (!o.spacing.empty()) scene.source = std::make_unique<RespacedSource>(std::move(scene.source), parseSpacing(o.spacing, "--spacing"));
   const VolumeInfo& info = scene.source->info();

@@ -67,9 +67,9 @@ void addClusterOptions(CLI::App* cmd, SceneOptions& options);
 //! Opens the volume and validates every option. Throws kdswap::Error with one clear line.
 Scene buildScene(const SceneOptions& options);
 //! openDataset for the value of --dataset. What looks like a file there (a path, a name with a dot,
-//! or anything that exists) is refused with the way to open it: `fileCommand` and the path
-//! ("--volume" for render, bench and export; "kdswap info" for info, whose argument is the file).
-std::unique_ptr<VolumeSource> openDatasetOption(const std::string& spec, const std::string& fileCommand);
+//! or anything that exists) is refused with the --volume option that opens it, which every
+//! subcommand has (kdswap-gui takes files in --dataset, so the slip is easy to make).
+std::unique_ptr<VolumeSource> openDatasetOption(const std::string& spec);
 //! "WxH" -> (w, h), each 1..16384. Throws kdswap::Error.
 void parseImageSize(const std::string& text, int& width, int& height);
 //! The items between `separator`s, empty ones kept ("1,,2," -> {"1", "", "2", ""}; "" -> {}).

@@ -145,7 +145,7 @@ kdswap_cli_case(BenchFileInDatasetNamesVolume EXPECT "a volume file is opened wi
                 ARGS bench --dataset scan.raw --sizes 16 --nodes 1 --frames 1)
 kdswap_cli_case(ExportFileInDatasetNamesVolume EXPECT "a volume file is opened with --volume scan\\.raw"
                 ARGS export --dataset scan.raw --out o.nrrd)
-kdswap_cli_case(InfoFileInDatasetNamesItsArgument EXPECT "a volume file is opened with kdswap info scan\\.raw"
+kdswap_cli_case(InfoFileInDatasetNamesVolume EXPECT "a volume file is opened with --volume scan\\.raw"
                 ARGS info --dataset scan.raw)
 kdswap_cli_case(RenderUnknownDatasetListsTheDataSets
                 EXPECT "data set .foo.: unknown \\(built-in data sets: phantom, turbulence, vessels\\)"

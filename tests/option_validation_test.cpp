@@ -124,6 +124,11 @@ TEST_CASE("an unknown subcommand is named and the subcommands listed") {
   expectRefused("\"\"", {"unknown subcommand"});
 }
 
+TEST_CASE("no subcommand, or an option before one, is answered with the subcommands") {
+  expectRefused("", {"give a subcommand, one of", "render", "animate", "bench", "info", "export", "kdswap --help"});
+  expectRefused("--out x.png", {"give a subcommand before \"--out\"", "render", "export"});
+}
+
 TEST_CASE("--tf naming a folder says it is a folder") {
   const TempDir dir;
   expectRefused(kRender + "--out " + dir.file("t.png") + " --tf " + dir.path.string(), {"--tf", "is a folder"});
