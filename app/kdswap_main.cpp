@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   const bool help = first == "-h" || first == "--help";
   if (argc == 1 || (first[0] == '-' && !help)) {  // options come after the subcommand
     const std::string before = argc == 1 ? "" : " before \"" + oneLine(first) + "\"";
-    std::fprintf(stderr, "kdswap: give a subcommand%s, one of %s (kdswap --help explains them; kdswap render renders "
+    std::fprintf(stderr, "kdswap: give a subcommand%s, one of %s (kdswap --help explains them; kdswap render draws "
                  "the default scene)\n", before.c_str(), names.c_str());
     return 2;
   }

@@ -246,9 +246,10 @@ int main(int argc, char** argv) {
   // Only `render` runs over MPI; name it rather than CLI11's "A subcommand is required".
   if (argc == 1 || (argv[1][0] != '-' && std::string(argv[1]) != "render")) {
     const std::string problem =
-        argc == 1 ? std::string("give the subcommand render (mpirun -np R kdswap-mpi render ...; kdswap-mpi render --help)")
-                  : std::string("unknown subcommand \"") + argv[1] +
-                        "\": kdswap-mpi has only render (bench, animate, export and info are kdswap's)";
+        argc == 1
+            ? std::string("give the subcommand render (mpirun -np R kdswap-mpi render ...; kdswap-mpi render --help)")
+            : std::string("unknown subcommand \"") + argv[1] +
+                  "\": kdswap-mpi has only render (bench, animate, export and info are kdswap's)";
     const std::string first = kdswap::firstProblemOfAnyRank(problem);
     if (root) std::fprintf(stderr, "kdswap-mpi: %s\n", oneLine(first).c_str());
     return 2;
