@@ -25,14 +25,14 @@ int main(int argc, char** argv) {
   kdswap::addExportCommand(app);
   app.footer("Run 'kdswap SUBCOMMAND --help' for the options of each subcommand.");
   // CLI11 would report an unknown first word, or none, as "A subcommand is required".
+  const std::string first = argc > 1 ? argv[1] : "";
   std::string names;
   bool known = false;
   const CLI::App& all = app;  // the const overload: every subcommand, not only the parsed ones
   for (const CLI::App* sub : all.get_subcommands([](const CLI::App*) { return true; })) {
-    known = known || (argc > 1 && sub->get_name() == argv[1]);
+    known = known || (argc > 1 && sub->get_name() == first);
     names += (names.empty() ? "" : ", ") + sub->get_name();
   }
-  const std::string first = argc > 1 ? argv[1] : "";
   const bool help = first == "-h" || first == "--help";
   if (argc == 1 || (first[0] == '-' && !help)) {  // options come after the subcommand
     const std::string before = argc == 1 ? "" : " before \"" + oneLine(first) + "\"";
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
                  "the default scene)\n", before.c_str(), names.c_str());
     return 2;
   }
-  if (first[0] != '-' && !known) {
+  if (!help && !known) {
     std::fprintf(stderr, "kdswap: unknown subcommand \"%s\" (expected one of %s)\n", oneLine(first).c_str(), names.c_str());
     return 2;
   }

@@ -281,9 +281,7 @@ std::unique_ptr<VolumeSource> openDatasetOption(const std::string& spec) {
   std::error_code ec;
   const bool looksLikeFile = name.find_first_of("/.") != std::string::npos || std::filesystem::exists(spec, ec);
   if (!isDatasetSpec(spec) && looksLikeFile) {
-    std::string names;
-    for (const std::string& n : datasetNames()) names += (names.empty() ? "" : ", ") + n;
-    throw Error("--dataset \"" + spec + "\": not a built-in data set (" + names +
+    throw Error("--dataset \"" + spec + "\": not a built-in data set (" + datasetNameList() +
                 "); a volume file is opened with --volume " + spec);
   }
   return openDataset(spec);

@@ -66,9 +66,7 @@ void BackgroundThreads::on_scheduler_entry(bool isWorker) {
 std::unique_ptr<VolumeSource> openVolumeSpec(const std::string& data, const RawLayout& layout) {
   if (isDatasetSpec(data)) return openDataset(data);
   // Neither a built-in name nor a file: say what would have been accepted.
-  std::string builtIns;
-  for (const std::string& n : datasetNames()) builtIns += (builtIns.empty() ? "" : ", ") + n;
-  const std::string builtIn = "a built-in data set NAME[:SIZE] (" + builtIns + "; e.g. phantom:128)";
+  const std::string builtIn = "a built-in data set NAME[:SIZE] (" + datasetNameList() + "; e.g. phantom:128)";
   if (data.empty()) throw Error("no data set given: expected " + builtIn + " or a volume file");
   std::error_code ec;
   if (!std::filesystem::exists(std::filesystem::status(data, ec)))

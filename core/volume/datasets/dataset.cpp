@@ -62,6 +62,12 @@ std::vector<std::string> datasetNames() {
   return names;
 }
 
+std::string datasetNameList() {
+  std::string list;
+  for (const std::string& n : datasetNames()) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
 bool isDatasetSpec(const std::string& spec) {
   const std::vector<std::string> names = datasetNames();
   return std::find(names.begin(), names.end(), spec.substr(0, spec.find(':'))) != names.end();
@@ -72,9 +78,7 @@ std::unique_ptr<VolumeSource> openDataset(const std::string& spec) {
   const std::string name = spec.substr(0, colon);
   auto it = registry().find(name);
   if (it == registry().end()) {
-    std::string valid;
-    for (const std::string& n : datasetNames()) valid += (valid.empty() ? "" : ", ") + n;
-    throw Error("data set \"" + name + "\": unknown (built-in data sets: " + valid + ")");
+    throw Error("data set \"" + name + "\": unknown (built-in data sets: " + datasetNameList() + ")");
   }
   const glm::ivec3 dims = colon == std::string::npos ? it->second.defaultDims : parseSize(spec.substr(colon + 1), spec);
   auto source = it->second.make(dims);

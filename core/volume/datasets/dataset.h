@@ -13,6 +13,8 @@ namespace kdswap {
 //! Parses "NAME[:N | :WxHxD]" and builds the data set. Throws kdswap::Error listing valid names.
 std::unique_ptr<VolumeSource> openDataset(const std::string& spec);
 std::vector<std::string> datasetNames();
+//! The names joined for messages: "phantom, turbulence, vessels".
+std::string datasetNameList();
 //! True when `spec` names a built-in data set ("phantom", "phantom:64"), not a file.
 bool isDatasetSpec(const std::string& spec);
 inline constexpr const char* kDefaultDataset = "phantom:128";
