@@ -130,6 +130,9 @@ void drawPanels(GuiState& state, float w, float h) {
 void pollWorker(GuiState& state, RenderWorker& worker, DamageRenderer& renderer) {
   if (auto scene = worker.takeScene()) {
     const bool newData = !state.sceneShown || state.sceneShown->spec.data != scene->spec.data;
+    // Errors shown so far were about the data before (one that would not open, say): the new data
+    // on screen answers them. This poll's own errors are added below.
+    if (newData) state.errors.clear();
     if (newData && !state.tfEdited && !scene->info.preset.empty() && scene->info.preset != state.request.transfer.name()) {
       try {
         state.request.transfer = loadTransferFunction(scene->info.preset);
@@ -161,6 +164,7 @@ void pollWorker(GuiState& state, RenderWorker& worker, DamageRenderer& renderer)
       state.shownLog.push_back({state.uiFrame, frame->id, frame->preview, frame->request.width, frame->request.height,
                                 frame->request.view, ImGui::IsAnyMouseDown()});
   }
+  const std::uint64_t failed = worker.lastFailed();  // before takeErrors: its error comes with it
   std::vector<std::string> errors = worker.takeErrors();
   if (!errors.empty()) {
     // The worker kept the previous scene: show its settings again.
@@ -168,6 +172,7 @@ void pollWorker(GuiState& state, RenderWorker& worker, DamageRenderer& renderer)
     state.errors.insert(state.errors.end(), errors.begin(), errors.end());
     if (state.errors.size() > 4) state.errors.erase(state.errors.begin(), state.errors.end() - 4);
   }
+  state.lastFailed = failed;
   state.rendering = worker.busy();
   state.building = worker.building();
 }

@@ -102,6 +102,7 @@ struct GuiState {
   GlTexture frameTexture;                           //!< `frame`, shown in the viewport
   GlTexture fullTexture, stagesTexture;             //!< `fullFrame`'s image and stage atlas
   std::uint64_t lastSubmitted = 0;                  //!< id of the newest request sent to the worker
+  std::uint64_t lastFailed = 0;                     //!< id of the newest request that ended without a frame
   bool refinePending = false;                       //!< a preview is shown; full quality follows when the mouse rests
   long uiFrame = 0;                                 //!< UI frames drawn so far
   bool logShown = false;                            //!< keep shownLog (scripts and --dump-state)
@@ -120,6 +121,10 @@ struct GuiState {
   //! fields on Open): the file opens with it whenever chosen again, and the fields show it.
   std::map<std::string, RawLayout> rawLayouts;
   DrawnLayout layout;
+
+  //! The newest request ended without a frame and none is shown: nothing will appear until the
+  //! user changes something (start-up data that would not open, say). Its error is in `errors`.
+  bool nothingToShow() const { return lastSubmitted != 0 && lastFailed == lastSubmitted && !frame; }
 };
 
 }  // namespace kdswap

@@ -172,6 +172,9 @@ InputScript::Step InputScript::advance(const GuiState& state, double now) {
              std::any_of(state.shownLog.begin() + std::ptrdiff_t(shownAtStart_), state.shownLog.end(),
                          [](const ShownFrame& f) { return f.preview; });
     }
+    // The newest request ended without a frame (data that would not open): none will come.
+    if (!done && state.lastSubmitted != 0 && state.lastFailed == state.lastSubmitted)
+      fail(c, "no frame will come: " + (state.errors.empty() ? std::string("the newest request failed") : state.errors.back()));
     if (!done && now - startedAt_ > kWaitTimeoutSeconds) fail(c, "timed out");
   } else if (c.verb == "checkpoint") {
     out.checkpoint = c.args[0];

@@ -12,7 +12,8 @@
 //   frames N                 let N UI frames pass
 //   wait full|preview        until the full-quality frame of the latest request is shown and
 //                            nothing is rendering or pending; or until a preview is on screen
-//                            (timeout: 300 s)
+//                            (timeout: 300 s; fails at once when the latest request ended
+//                            without a frame, e.g. data that would not open)
 //   checkpoint NAME          record the state (view, transfer function, frames shown, layout)
 //                            and pictures under NAME (see gui_app.h, --dump-state)
 //   verify-redraw            on the next frame that changes nothing, redraw the whole window and

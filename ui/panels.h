@@ -41,6 +41,16 @@ float buttonWidth(const char* label);
 //! Width of a widget `item` pixels wide followed by its `label`.
 float labelledWidth(float item, const char* label);
 
+//! What a panel without a full frame shows: that one is coming, or, when the newest request
+//! failed with nothing on screen, that none will come until other data is chosen.
+inline void drawNoFullFrameText(const GuiState& state) {
+  ImGui::PushTextWrapPos(0.0f);  // wrapped at the panel's edge, however narrow
+  ImGui::TextDisabled("%s", state.nothingToShow()
+                                ? "Nothing to show: see the error in the Viewport, and choose other data in Settings."
+                                : "Waiting for the first full frame...");
+  ImGui::PopTextWrapPos();
+}
+
 //! The view a fresh scene starts from (and R restores): the core defaults with the user's
 //! projection and up axis kept.
 View resetView(const View& current);

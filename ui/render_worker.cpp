@@ -122,6 +122,11 @@ bool RenderWorker::building() const {
   return buildingScene_;
 }
 
+std::uint64_t RenderWorker::lastFailed() const {
+  std::lock_guard lock(mutex_);
+  return lastFailed_;
+}
+
 void RenderWorker::run() {
   BackgroundThreads background;
   for (;;) {
@@ -140,6 +145,7 @@ void RenderWorker::run() {
       // A failed frame leaves the cluster usable (VirtualCluster's contract): report and go on.
       std::lock_guard lock(mutex_);
       errors_.push_back(e.what());
+      lastFailed_ = job.id;
     }
     std::lock_guard lock(mutex_);
     inFlight_ = false;
@@ -186,7 +192,11 @@ bool RenderWorker::ensureScene(const SceneSpec& spec) {
 }
 
 void RenderWorker::process(const Job& job) {
-  if (!ensureScene(job.scene)) return;
+  if (!ensureScene(job.scene)) {  // no scene at all: ensureScene queued the error
+    std::lock_guard lock(mutex_);
+    lastFailed_ = job.id;
+    return;
+  }
   FrameRequest request = job.request;
   request.recordPhases = !job.preview;
   // Pass 1 is the frame; a refined job's later passes publish the running mean with pass 1's

@@ -87,6 +87,10 @@ class RenderWorker {
   bool busy() const;
   //! True while a scene is being built (data loading, distribution).
   bool building() const;
+  //! Id of the newest request that ended without a frame (its scene would not build, or the frame
+  //! failed; takeErrors says why), 0 if none. Set after its error is queued, so a caller that reads
+  //! this before takeErrors gets the error too.
+  std::uint64_t lastFailed() const;
 
  private:
   struct Job {
@@ -106,6 +110,7 @@ class RenderWorker {
   std::optional<Job> pending_;
   bool inFlight_ = false, buildingScene_ = false, stop_ = false;
   std::uint64_t nextId_ = 1;
+  std::uint64_t lastFailed_ = 0;
   std::shared_ptr<const SceneSnapshot> newScene_;
   std::shared_ptr<const FrameSnapshot> newFrame_;
   std::vector<std::string> errors_;

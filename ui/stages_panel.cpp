@@ -143,7 +143,7 @@ void drawStagesPanel(GuiState& state) {
   }
   const FrameSnapshot* frame = state.fullFrame.get();
   if (!frame || !frame->phases || frame->stages.pixels.empty() || !state.stagesTexture.valid()) {
-    ImGui::TextDisabled("Waiting for the first full frame...");
+    drawNoFullFrameText(state);
     ImGui::End();
     return;
   }

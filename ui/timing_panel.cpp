@@ -154,7 +154,7 @@ void drawTimingPanel(GuiState& state) {
   if (ImGui::BeginTabBar("timing")) {
     if (ImGui::BeginTabItem("Timeline")) {
       if (state.fullFrame) drawTimelineTab(*state.fullFrame, state.timeline);
-      else ImGui::TextDisabled("Waiting for the first full frame...");
+      else drawNoFullFrameText(state);
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Table")) {
