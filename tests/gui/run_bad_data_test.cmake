@@ -1,7 +1,8 @@
 # kdswap-gui started on data that will not open: a script's `wait full` fails at once with the
 # data's error and exit code 2, rather than waiting out its 300 s timeout for a frame that cannot
-# come; without a script, --frames also ends with 2. Called by CTest with -DXVFB_RUN= -DGUI= -DOUT=
-# (see ui/CMakeLists.txt).
+# come; without a script, --frames also ends with 2; opening other data from the panel then shows
+# it and clears the error. Called by CTest with -DXVFB_RUN= -DGUI= -DOUT= (see ui/CMakeLists.txt).
+include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 file(MAKE_DIRECTORY ${OUT})
 # A valid header whose sizes no machine holds (the data file exists, so the size is what fails).
 file(WRITE ${OUT}/huge.raw "0123456789abcdef")
@@ -9,12 +10,8 @@ file(WRITE ${OUT}/huge.nhdr "NRRD0004\ntype: float\ndimension: 3\nsizes: 100000 
 file(WRITE ${OUT}/wait.script "wait full\n")
 set(expected "huge.nhdr: dimensions 100000x100000x100000 need")
 
-# The app's exit code is reported by a shell inside xvfb-run (see run_raw_test.cmake).
 string(TIMESTAMP started "%s")
-execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1600x1000x24"
-                        sh -c "\"$0\" \"$@\"; echo \"kdswap-gui exited with $?\" >&2" ${GUI} --volume huge.nhdr
-                        --script wait.script --screenshot ${OUT}/shot.png
-                WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
+gui_run_reporting_exit(${OUT} err --volume huge.nhdr --script wait.script --screenshot ${OUT}/shot.png)
 string(TIMESTAMP ended "%s")
 math(EXPR seconds "${ended} - ${started}")
 if(NOT err MATCHES "kdswap-gui exited with 2\n" OR NOT err MATCHES "wait.script:1: wait: no frame will come: ${expected}")
@@ -24,10 +21,7 @@ if(seconds GREATER 120)
   message(FATAL_ERROR "wait full on data that will not open took ${seconds} s: it waited for a frame that cannot come")
 endif()
 
-execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1600x1000x24"
-                        sh -c "\"$0\" \"$@\"; echo \"kdswap-gui exited with $?\" >&2" ${GUI} --volume huge.nhdr
-                        --frames 5
-                WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
+gui_run_reporting_exit(${OUT} err --volume huge.nhdr --frames 5)
 if(NOT err MATCHES "kdswap-gui exited with 2\n" OR NOT err MATCHES "${expected}")
   message(FATAL_ERROR "--frames on data that will not open: expected exit 2 naming the data's error, got: ${err}")
 endif()
@@ -37,13 +31,8 @@ endif()
 file(WRITE ${OUT}/recover.script "frames 3\nmove item data-path\nclick left\ntype phantom:32\nframes 2\nmove item open\nclick left\nwait full\n")
 set(state ${OUT}/state.json)
 file(REMOVE ${state})
-set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --volume huge.nhdr --nodes 4 --script recover.script
-            --dump-state ${state})
-execute_process(COMMAND ${command} WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
-string(REPLACE ";" " " shown "${command}")
-if(NOT result EQUAL 0)
-  message(FATAL_ERROR "opening phantom:32 after data that would not open: exit ${result}: ${err}\nreproduce with:\n  ${shown}")
-endif()
+gui_run_ok(${OUT} "opening phantom:32 after data that would not open" --volume huge.nhdr --nodes 4
+           --script recover.script --dump-state ${state})
 file(READ ${state} json)
 string(JSON spec GET "${json}" final data spec)
 string(JSON errors LENGTH "${json}" final errors)

@@ -2,19 +2,15 @@
 # options are missing. The file comes by --volume (as in `kdswap render`), then by --dataset, which
 # the app also takes files in; --up sets the view's up axis. Called by CTest with -DXVFB_RUN= -DGUI=
 # -DOUT= (see ui/CMakeLists.txt).
+include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 file(MAKE_DIRECTORY ${OUT})
 # 8 x 8 x 8 uint8 voxels whose name gives no layout: 512 bytes of text make a varying volume.
 string(REPEAT "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdef" 16 voxels)
 file(WRITE ${OUT}/scan.raw "${voxels}")
 set(state ${OUT}/state.json)
 file(REMOVE ${state})
-set(command ${XVFB_RUN} -a -s "-screen 0 1600x1000x24" ${GUI} --volume scan.raw --raw-dims 8x8x8 --raw-type uint8 --up -y
-            --nodes 4 --screenshot ${OUT}/shot.png --frames 5 --dump-state ${state})
-execute_process(COMMAND ${command} WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
-string(REPLACE ";" " " shown "${command}")
-if(NOT result EQUAL 0)
-  message(FATAL_ERROR "kdswap-gui exited with ${result}: ${err}\nreproduce with:\n  ${shown}")
-endif()
+gui_run_ok(${OUT} "scan.raw with its layout" --volume scan.raw --raw-dims 8x8x8 --raw-type uint8 --up -y --nodes 4
+           --screenshot ${OUT}/shot.png --frames 5 --dump-state ${state})
 file(READ ${state} json)
 string(JSON spec GET "${json}" final data spec)
 string(JSON type GET "${json}" final data type)
@@ -28,13 +24,8 @@ if(NOT up STREQUAL "-y")
   message(FATAL_ERROR "--up -y: the state's view has up ${up}")
 endif()
 
-# Without the layout: one line naming the options, exit code 2. The app's own exit code is
-# reported by a shell inside xvfb-run: the app exits at once here, and xvfb-run may then fail to
-# remove its temporary directory while Xvfb is still starting and exit 5 in place of the app's code.
-execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1600x1000x24"
-                        sh -c "\"$0\" \"$@\"; echo \"kdswap-gui exited with $?\" >&2" ${GUI} --dataset scan.raw
-                        --screenshot ${OUT}/none.png --frames 5
-                WORKING_DIRECTORY ${OUT} RESULT_VARIABLE result ERROR_VARIABLE err)
+# Without the layout: one line naming the options, exit code 2.
+gui_run_reporting_exit(${OUT} err --dataset scan.raw --screenshot ${OUT}/none.png --frames 5)
 if(NOT err MATCHES "kdswap-gui exited with 2\n" OR
    NOT err MATCHES "scan.raw: raw file layout unknown: give --raw-dims WxHxD and --raw-type TYPE")
   message(FATAL_ERROR "a raw file without layout: expected exit 2 naming --raw-dims and --raw-type, got: ${err}")
