@@ -42,11 +42,11 @@ float buttonWidth(const char* label);
 float labelledWidth(float item, const char* label);
 
 //! What a panel without a full frame shows: that one is coming, or, when the newest request
-//! failed with nothing on screen, that none will come until other data is chosen.
+//! failed with nothing on screen, that none will come until the user changes something.
 inline void drawNoFullFrameText(const GuiState& state) {
   ImGui::PushTextWrapPos(0.0f);  // wrapped at the panel's edge, however narrow
   ImGui::TextDisabled("%s", state.nothingToShow()
-                                ? "Nothing to show: see the error in the Viewport, and choose other data in Settings."
+                                ? "Nothing to show: the Viewport says why. Choose other data or settings."
                                 : "Waiting for the first full frame...");
   ImGui::PopTextWrapPos();
 }

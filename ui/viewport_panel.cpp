@@ -181,8 +181,9 @@ void drawViewportPanel(GuiState& state) {
     draw->AddImage(state.frameTexture.imguiId(), ImVec2(shown.x, shown.y), ImVec2(shown.x + shown.z, shown.y + shown.w));
   else
     draw->AddText(ImVec2(shown.x + 10, shown.y + 10), IM_COL32(200, 200, 200, 255),
-                  state.nothingToShow() ? "Nothing to show: the error above says why. Choose other data in Settings."
-                                        : "Waiting for the first frame...");
+                  !state.nothingToShow()  ? "Waiting for the first frame..."
+                  : state.errors.empty() ? "Nothing to show: the last request failed. Choose other data or settings."
+                                         : "Nothing to show: the error above says why. Choose other data or settings.");
   if (state.showBricks && state.sceneShown) drawBricks(state, shown);
   if (ImGui::IsItemHovered() && !ImGui::IsItemActive())
     draw->AddText(ImVec2(shown.x + 6, shown.y + shown.w - 20), IM_COL32(200, 200, 200, 160),
