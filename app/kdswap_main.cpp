@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   bool known = false;
   const CLI::App& all = app;  // the const overload: every subcommand, not only the parsed ones
   for (const CLI::App* sub : all.get_subcommands([](const CLI::App*) { return true; })) {
-    known = known || (argc > 1 && sub->get_name() == first);
+    known = known || sub->get_name() == first;
     names += (names.empty() ? "" : ", ") + sub->get_name();
   }
   const bool help = first == "-h" || first == "--help";
