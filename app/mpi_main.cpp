@@ -134,7 +134,7 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
     const float tolerance = ert < 1.0f ? kVerifyTolerance + (1.0f - ert) : kVerifyTolerance;
     verified = diff <= tolerance;
     stats["verify"] = {{"max_abs_diff", diff}, {"tolerance", tolerance}, {"passed", verified}};
-    std::printf("verify: max |distributed - single node| = %.3g (tolerance %.3g): %s\n", diff, tolerance,
+    std::printf("verify: max |distributed - single node| = %.4g (tolerance %.4g): %s\n", diff, tolerance,
                 verified ? "OK" : "FAILED");
   }
   if (!o.stats.empty()) {

@@ -140,7 +140,7 @@ void run(const RenderOptions& o) {
     const float tolerance = ert < 1.0f ? kVerifyTolerance + (1.0f - ert) : kVerifyTolerance;
     verified = diff <= tolerance;
     stats["verify"] = {{"max_abs_diff", diff}, {"tolerance", tolerance}, {"passed", verified}};
-    std::printf("verify: max |distributed - single node| = %.3g (tolerance %.3g%s): %s\n", diff, tolerance,
+    std::printf("verify: max |distributed - single node| = %.4g (tolerance %.4g%s): %s\n", diff, tolerance,
                 ert < 1.0f ? ", early ray termination on; --ert 1 for the exact 1e-5 check" : "",
                 verified ? "OK" : "FAILED");
   }
