@@ -27,6 +27,7 @@
 #include "core/cluster/front_to_back_waves.h"
 #include "core/image/image_io.h"
 #include "core/transfer/presets.h"
+#include "core/util/text_items.h"
 #include "core/util/error.h"
 #include "core/util/file_writer.h"
 #include "core/volume/datasets/dataset.h"
@@ -59,17 +60,11 @@ template <typename T>
 std::vector<T> parseList(const std::string& text, const char* option, T lo, T hi) {
   std::vector<T> out;
   for (const std::string& item : splitItems(text, ',')) {
-    std::size_t used = 0;
-    long long v = -1;
-    try {
-      v = std::stoll(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || item.empty() || v < lo || v > hi)
+    const std::optional<std::int64_t> v = parseWholeNumber(item);
+    if (!v || *v < lo || *v > hi)
       throw Error(std::string(option) + " \"" + text + "\": \"" + item + "\" is not a whole number from " +
                   std::to_string(lo) + " to " + std::to_string(hi));
-    out.push_back(T(v));
+    out.push_back(T(*v));
   }
   if (out.empty()) throw Error(std::string(option) + ": empty list");
   return out;

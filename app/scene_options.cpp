@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <vector>
 
 #include "core/cluster/front_to_back_waves.h"
@@ -19,18 +18,6 @@
 #include "core/volume/respaced_source.h"
 
 namespace kdswap {
-
-std::vector<std::string> splitItems(const std::string& text, char separator) {
-  // Not std::getline: it drops a trailing empty item, so "64x" would read as "64".
-  std::vector<std::string> items;
-  if (text.empty()) return items;
-  for (std::size_t start = 0;;) {
-    const std::size_t end = text.find(separator, start);
-    items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) return items;
-    start = end + 1;
-  }
-}
 
 std::vector<double> parseNumbers(const std::string& text, char separator, const std::string& option) {
   std::vector<double> values;
@@ -362,9 +349,7 @@ Scene buildScene(const SceneOptions& o) {
     throw Error(std::string("--network: ") + e.what());
   }
   if (!o.injectFault.empty()) {
-    std::vector<std::string> parts;
-    std::stringstream in(o.injectFault);
-    for (std::string item; std::getline(in, item, ':');) parts.push_back(item);
+    const std::vector<std::string> parts = splitItems(o.injectFault, ':');
     if (parts.size() < 2 || parts.size() > 4) throw Error("--inject-fault \"" + o.injectFault + "\": expected KIND:NODE[:MESSAGE[:DELAY_S]]");
     scene.fault.kind = parseFaultKind(parts[0]);
     const auto numbers = parseNumbers(o.injectFault.substr(parts[0].size() + 1), ':', "--inject-fault");

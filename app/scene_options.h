@@ -16,6 +16,7 @@
 #include "core/cluster/virtual_cluster.h"
 #include "core/transfer/transfer_function.h"
 #include "core/composite/registry.h"  // checkStrategyName
+#include "core/util/text_items.h"  // splitItems
 #include "core/volume/volume_source.h"
 
 namespace kdswap {
@@ -72,8 +73,6 @@ Scene buildScene(const SceneOptions& options);
 std::unique_ptr<VolumeSource> openDatasetOption(const std::string& spec);
 //! "WxH" -> (w, h), each 1..16384. Throws kdswap::Error.
 void parseImageSize(const std::string& text, int& width, int& height);
-//! The items between `separator`s, empty ones kept ("1,,2," -> {"1", "", "2", ""}; "" -> {}).
-std::vector<std::string> splitItems(const std::string& text, char separator);
 //! The value of `option` as finite numbers between `separator`s ("1,0.5" -> {1, 0.5}; "" -> {}).
 //! Ranges are the caller's to check. Throws kdswap::Error naming `option`, the text and the item
 //! that is not a number (an empty item, as in "1,,2" or "1,2,", is not one).

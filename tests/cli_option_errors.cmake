@@ -31,6 +31,10 @@ kdswap_cli_case(RenderRawEndianOnAHeaderFileIsRefused EXPECT "${_headerRefused}"
                 ARGS render --volume header.nhdr --raw-endian big --size 16x16 --out o.png)
 kdswap_cli_case(InfoRawEndianOnAHeaderFileIsRefused EXPECT "${_headerRefused}"
                 ARGS info --raw-endian big header.nhdr)
+# A data set's size with a stray 'x' is refused, not read as the size before it.
+kdswap_cli_case(RenderDatasetSizeWithATrailingXIsRefused
+                EXPECT "kdswap: data set .phantom:16x.: size .16x. is not N or WxHxD"
+                ARGS render --dataset phantom:16x --size 16x16 --out o.png)
 kdswap_cli_case(RenderRawDimsWithADatasetAreRefused
                 EXPECT "--raw-dims describes a raw --volume file. it does not apply to --dataset phantom:16"
                 ARGS render ${_tiny} --raw-dims 66x66x66)

@@ -44,6 +44,22 @@ TEST_CASE("vessels and turbulence are registered, name themselves and suggest th
   }
 }
 
+TEST_CASE("a data set's size is N or WxHxD, each a whole number from 2 to 8192") {
+  CHECK(openDataset("phantom:40")->info().dims == glm::ivec3(40));
+  CHECK(openDataset("vessels:32x48x64")->info().dims == glm::ivec3(32, 48, 64));
+  CHECK(openDataset("turbulence:+16x2x8192")->info().dims == glm::ivec3(16, 2, 8192));
+  // A stray separator is refused, not dropped: "64x" must not quietly mean 64^3.
+  for (const char* spec : {"phantom:64x", "phantom:64x64x64x", "phantom:64xx64", "phantom:x64", "phantom:",
+                           "phantom:64x64", "phantom:0x40", "phantom:6.5", "phantom: 64", "phantom:+-64"}) {
+    CAPTURE(spec);
+    CHECK_THROWS_WITH_AS(openDataset(spec), doctest::Contains("is not N or WxHxD"), Error);
+  }
+  for (const char* spec : {"phantom:1", "phantom:8193", "phantom:-64", "phantom:64x64x1"}) {
+    CAPTURE(spec);
+    CHECK_THROWS_WITH_AS(openDataset(spec), doctest::Contains("each size must be between 2 and 8192 voxels"), Error);
+  }
+}
+
 TEST_CASE("a data set gives the same voxels read whole, brick by brick, or opened twice") {
   for (const char* name : kProcedural)
     for (const glm::ivec3 d : {glm::ivec3(17), glm::ivec3(33, 20, 9), glm::ivec3(40, 41, 42)}) {

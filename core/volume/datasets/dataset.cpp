@@ -4,9 +4,10 @@
 #include <algorithm>
 #include <functional>
 #include <map>
-#include <sstream>
+#include <optional>
 
 #include "core/util/error.h"
+#include "core/util/text_items.h"
 #include "core/volume/datasets/phantom.h"
 #include "core/volume/datasets/turbulence.h"
 #include "core/volume/datasets/vessels.h"
@@ -31,24 +32,15 @@ const std::map<std::string, Entry>& registry() {
 }
 
 glm::ivec3 parseSize(const std::string& text, const std::string& spec) {
-  std::vector<long long> parts;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, 'x')) {
-    std::size_t used = 0;
-    long long v = -1;
-    try {
-      v = std::stoll(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || item.empty())
-      throw Error("data set \"" + spec + "\": size \"" + text + "\" is not N or WxHxD");
-    parts.push_back(v);
+  std::vector<std::int64_t> parts;
+  for (const std::string& item : splitItems(text, 'x')) {
+    const std::optional<std::int64_t> v = parseWholeNumber(item);
+    if (!v) throw Error("data set \"" + spec + "\": size \"" + text + "\" is not N or WxHxD");
+    parts.push_back(*v);
   }
   if (parts.size() == 1) parts = {parts[0], parts[0], parts[0]};
   if (parts.size() != 3) throw Error("data set \"" + spec + "\": size \"" + text + "\" is not N or WxHxD");
-  for (long long v : parts)
+  for (std::int64_t v : parts)
     if (v < 2 || v > 8192)
       throw Error("data set \"" + spec + "\": each size must be between 2 and 8192 voxels");
   return glm::ivec3(int(parts[0]), int(parts[1]), int(parts[2]));

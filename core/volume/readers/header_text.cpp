@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "core/util/error.h"
+#include "core/util/text_items.h"
 
 namespace kdswap {
 
@@ -55,14 +56,7 @@ std::vector<std::string_view> splitWords(std::string_view s) {
   return words;
 }
 
-std::optional<std::int64_t> parseInteger(std::string_view s) {
-  s = trim(s);
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  std::int64_t v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-  return v;
-}
+std::optional<std::int64_t> parseInteger(std::string_view s) { return parseWholeNumber(trim(s)); }
 
 std::optional<double> parseNumber(std::string_view s) {
   s = trim(s);
