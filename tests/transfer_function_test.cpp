@@ -43,3 +43,25 @@ TEST_CASE("a ParaView colour-map export loads as a transfer function, rescaled t
   CHECK(tf.evaluate(0.5f).a == doctest::Approx(0.4f));
   CHECK_THROWS_AS(TransferFunction::fromJson(nlohmann::json::parse(R"({"RGBPoints": [0, 1, 1]})"), "bad.json"), Error);
 }
+
+TEST_CASE("a transfer function file with a value that is not a number names the point and the item") {
+  const auto message = [](const char* text) {
+    try {
+      TransferFunction::fromJson(nlohmann::json::parse(text), "tf.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(message(R"({"colors": [[0, 1, 1, 1], [1, 1, 1, 1]], "opacity": [[0, 0], [1, "NaN"]]})") ==
+        "tf.json: opacity point 1: item 1 is a string, expected a number");
+  CHECK(message(R"({"colors": [[0, 1, 1, 1], [1, 1, null, 1]], "opacity": [[0, 0], [1, 1]]})") ==
+        "tf.json: colour stop 1: item 2 is null, expected a number");
+  CHECK(message(R"({"RGBPoints": [0, 1, 1, [1], 1, 1, 1, 1]})") ==
+        "tf.json: RGBPoints: item 3 is an array, expected a number");
+  CHECK(message(R"({"colors": {"x": 1}, "opacity": []})") == "tf.json: \"colors\" and \"opacity\" must be lists");
+  // Whatever else the JSON library refuses keeps the file's name, without the library's tag.
+  const std::string other = message(R"({"name": 5, "colors": [[0, 1, 1, 1]], "opacity": [[0, 1]]})");
+  CHECK(other.rfind("tf.json: malformed transfer function: ", 0) == 0);
+  CHECK(other.find("json.exception") == std::string::npos);
+}

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
+#include "core/util/json_error.h"
 
 namespace kdswap {
 namespace {
@@ -24,6 +25,18 @@ Value interpolate(const std::vector<Point>& points, float s, Get get) {
 }
 
 bool finiteIn01(float v) { return std::isfinite(v) && v >= 0.0f && v <= 1.0f; }
+
+//! Item `index` of `list` as a float; a string, null or list there is named, not left to the JSON
+//! library's message ("nan.json: opacity point 1: item 1 is a string, expected a number").
+float numberAt(const nlohmann::json& list, std::size_t index, const std::string& where, const std::string& what) {
+  const nlohmann::json& v = list.at(index);
+  if (!v.is_number()) {
+    const std::string kind = v.type_name();  // "string", "boolean", "null", "array", "object"
+    const std::string is = v.is_null() ? kind : (kind[0] == 'a' || kind[0] == 'o' ? "an " : "a ") + kind;
+    throw Error(where + ": " + what + ": item " + std::to_string(index) + " is " + is + ", expected a number");
+  }
+  return v.get<float>();
+}
 
 }  // namespace
 
@@ -90,30 +103,35 @@ TransferFunction TransferFunction::fromJson(const nlohmann::json& input, const s
       const auto& pts = j.at("RGBPoints");
       if (!pts.is_array() || pts.size() < 8 || pts.size() % 4 != 0)
         throw Error(where + ": RGBPoints must hold at least two groups of 4 numbers (x r g b)");
-      const float x0 = pts[0].get<float>(), x1 = pts[pts.size() - 4].get<float>();
+      const auto point = [&](std::size_t i) { return numberAt(pts, i, where, "RGBPoints"); };
+      const float x0 = point(0), x1 = point(pts.size() - 4);
       const float span = x1 > x0 ? x1 - x0 : 1.0f;
       for (std::size_t i = 0; i < pts.size(); i += 4)
-        colors.push_back({(pts[i].get<float>() - x0) / span,
-                          {pts[i + 1].get<float>(), pts[i + 2].get<float>(), pts[i + 3].get<float>()}});
+        colors.push_back({(point(i) - x0) / span, {point(i + 1), point(i + 2), point(i + 3)}});
       if (j.contains("Points")) {
         const auto& op = j.at("Points");  // [x, alpha, midpoint, sharpness, ...]
         if (!op.is_array() || op.size() < 8 || op.size() % 4 != 0)
           throw Error(where + ": Points must hold at least two groups of 4 numbers (x alpha mid sharp)");
         for (std::size_t i = 0; i < op.size(); i += 4)
-          opacity.push_back({(op[i].get<float>() - x0) / span, op[i + 1].get<float>()});
+          opacity.push_back({(numberAt(op, i, where, "Points") - x0) / span, numberAt(op, i + 1, where, "Points")});
       } else {
         opacity = {{0.0f, 0.0f}, {1.0f, 1.0f}};  // ParaView's default ramp
       }
     } else {
       if (!j.contains("colors") || !j.contains("opacity"))
         throw Error(where + ": expected \"colors\" and \"opacity\" (kdswap) or \"RGBPoints\" (ParaView)");
+      if (!j.at("colors").is_array() || !j.at("opacity").is_array())
+        throw Error(where + ": \"colors\" and \"opacity\" must be lists");
       for (const auto& c : j.at("colors")) {
         if (!c.is_array() || c.size() != 4) throw Error(where + ": each colour stop is [x, r, g, b]");
-        colors.push_back({c[0].get<float>(), {c[1].get<float>(), c[2].get<float>(), c[3].get<float>()}});
+        const std::string what = "colour stop " + std::to_string(colors.size());
+        colors.push_back({numberAt(c, 0, where, what),
+                          {numberAt(c, 1, where, what), numberAt(c, 2, where, what), numberAt(c, 3, where, what)}});
       }
       for (const auto& p : j.at("opacity")) {
         if (!p.is_array() || p.size() != 2) throw Error(where + ": each opacity point is [x, alpha]");
-        opacity.push_back({p[0].get<float>(), p[1].get<float>()});
+        const std::string what = "opacity point " + std::to_string(opacity.size());
+        opacity.push_back({numberAt(p, 0, where, what), numberAt(p, 1, where, what)});
       }
     }
     TransferFunction tf;
@@ -123,7 +141,7 @@ TransferFunction TransferFunction::fromJson(const nlohmann::json& input, const s
     tf.validate(where);
     return tf;
   } catch (const nlohmann::json::exception& e) {
-    throw Error(where + ": malformed transfer function: " + e.what());
+    throw Error(where + ": malformed transfer function: " + jsonErrorText(e));
   }
 }
 
