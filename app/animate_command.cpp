@@ -157,7 +157,7 @@ void run(const AnimateOptions& o) {
     throw Error("--frames " + std::to_string(o.frames) + ": must be from 1 to " + std::to_string(kMaxAnimationFrames));
   if (o.format != "png" && o.format != "exr") throw Error("--format \"" + o.format + "\": expected png or exr");
   if (!(o.fps > 0.0f && o.fps <= 240.0f)) throw Error("--fps must be in (0, 240]");
-  if (!std::isfinite(o.orbit)) throw Error("--orbit: degrees must be a finite number");
+  if (!(std::fabs(o.orbit) <= kMaxOrbitDegrees)) throw Error("--orbit: degrees must be from -36000 to 36000 (100 turns)");
   checkOutputFolder(o.outDir, "--out-dir");  // before any frame, not after the first render
   const std::vector<CameraKey> keys = o.keys.empty() ? std::vector<CameraKey>{} : loadCameraKeys(o.keys);
   Scene scene = buildScene(o.scene);
@@ -240,7 +240,7 @@ void addAnimateCommand(CLI::App& app) {
   addSceneOptions(cmd, options->scene);
   addClusterOptions(cmd, options->scene);
   CLI::Option* orbit =
-      cmd->add_option("--orbit", options->orbit, "Orbit this many degrees around the up axis")->capture_default_str();
+      cmd->add_option("--orbit", options->orbit, "Orbit this many degrees around the up axis (-36000..36000: up to 100 turns)")->capture_default_str();
   CLI::Option* sweep = cmd->add_option("--elevation-sweep", options->elevationSweep,
                                        "Orbit: elevation from FROM to TO degrees over the sequence, each in (-90, 90), e.g. -20,40")
                           ->check(nonEmpty());

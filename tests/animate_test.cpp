@@ -6,6 +6,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -111,6 +112,9 @@ TEST_CASE("malformed keys are rejected with the index of the bad key") {
                        doctest::Contains("unknown field"), Error);
   CHECK_THROWS_AS(parseCameraKeys(nlohmann::json::array(), "k.json"), Error);
   CHECK_THROWS_AS(CameraPath::orbit(View{}, 360.0f, 0), Error);
+  CHECK(CameraPath::orbit(View{}, -kMaxOrbitDegrees, 4).frame(3).view.azimuthDeg == View{}.azimuthDeg - 27000.0f);
+  CHECK_THROWS_WITH_AS(CameraPath::orbit(View{}, 1e9f, 36), "orbit: degrees must be from -36000 to 36000 (100 turns)", Error);
+  CHECK_THROWS_AS(CameraPath::orbit(View{}, std::nanf(""), 36), Error);
   CHECK_THROWS_AS(CameraPath::orbit(View{}, 360.0f, kMaxAnimationFrames + 1), Error);
 }
 

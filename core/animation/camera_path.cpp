@@ -55,7 +55,10 @@ std::string jsonReason(const nlohmann::json::exception& e) {
 
 CameraPath CameraPath::orbit(const View& start, float degrees, int frames, std::optional<glm::vec2> elevationSweep) {
   checkFrameCount(frames);
-  if (!std::isfinite(degrees)) throw Error("orbit: degrees must be a finite number");
+  // Beyond a hundred turns a float azimuth loses the step between frames (1e9 degrees over 36
+  // frames would draw views no one asked for).
+  if (!(std::fabs(degrees) <= kMaxOrbitDegrees))
+    throw Error("orbit: degrees must be from -36000 to 36000 (100 turns)");
   if (elevationSweep && (!validElevation(elevationSweep->x) || !validElevation(elevationSweep->y)))
     throw Error("elevation sweep: both angles must be in (-90, 90) degrees");
   CameraPath path;
