@@ -1,6 +1,9 @@
 // kdswap-gui: the desktop app (GLFW + Dear ImGui). Parses the options and runs ui/gui_app.
 #include <cstdio>
 #include <exception>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -12,11 +15,14 @@
 #include "core/volume/datasets/dataset.h"
 #include "ui/gui_app.h"
 #include "core/util/printable_text.h"
+#include "core/util/text_items.h"
+#include "ui/window_size.h"
 
 int main(int argc, char** argv) {
   kdswap::configureMalloc();  // before any thread allocates (core/util/memory.h)
   kdswap::GuiOptions o;
-  std::string windowSize = "1600x1000";
+  std::string windowSize = std::to_string(kdswap::kDefaultWindowSize.width) + "x" +
+                           std::to_string(kdswap::kDefaultWindowSize.height);
   CLI::App app{
       "kdswap-gui: explore data-distributed volume rendering with binary-swap compositing\n"
       "(Ma, Painter, Hansen & Krogh 1993) on P virtual nodes: the final image, every node's partial\n"
@@ -56,7 +62,8 @@ int main(int argc, char** argv) {
   app.add_option("--up", o.up,
                  "Volume axis pointing up on screen: +x -x +y -y +z -z (as kdswap render; also a list under Rendering)")
       ->capture_default_str();
-  app.add_option("--size", windowSize, "Window size WxH")->capture_default_str();
+  app.add_option("--size", windowSize, "Window size WxH (default: 1600x1000, or the screen if that is smaller)")
+      ->capture_default_str();
   app.add_option("--screenshot", o.screenshot,
                  "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed "
                  "(default 30), or when --script ends; then exit");
@@ -85,9 +92,13 @@ int main(int argc, char** argv) {
       "Measure: kdswap-gui --frames 300 --report-fps fps.json");
   try {
     app.parse(argc, argv);
-    if (std::sscanf(windowSize.c_str(), "%dx%d", &o.windowWidth, &o.windowHeight) != 2 || o.windowWidth < 320 ||
-        o.windowHeight < 240 || o.windowWidth > 16384 || o.windowHeight > 16384)
-      throw kdswap::Error("--size \"" + windowSize + "\": expected WxH, at least 320x240");
+    const std::vector<std::string> sides = kdswap::splitItems(windowSize, 'x');
+    const auto side = [&](std::size_t i) { return sides.size() == 2 ? kdswap::parseWholeNumber(sides[i]) : std::nullopt; };
+    const std::optional<std::int64_t> width = side(0), height = side(1);
+    if (!width || !height || *width < 320 || *height < 240 || *width > 16384 || *height > 16384)
+      throw kdswap::Error("--size \"" + windowSize + "\": expected WxH, from 320x240 to 16384x16384");
+    o.windowWidth = int(*width), o.windowHeight = int(*height);
+    o.windowSizeGiven = app.count("--size") > 0;
     if (app.count("--frames") && o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
     if (!o.screenshot.empty() && o.frames == 0 && o.script.empty()) o.frames = 30;
     if (!o.layout.empty() && o.screenshot.empty()) throw kdswap::Error("--layout needs --screenshot");

@@ -32,6 +32,7 @@
 #include "ui/panels.h"
 #include "core/util/printable_text.h"
 #include "ui/state_dump.h"
+#include "ui/window_size.h"
 
 namespace kdswap {
 namespace {
@@ -392,7 +393,14 @@ int runGui(const GuiOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(options.windowWidth, options.windowHeight,
+  WindowSize size{options.windowWidth, options.windowHeight};
+  if (!options.windowSizeGiven) {
+    int areaX = 0, areaY = 0, areaWidth = 0, areaHeight = 0;
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor())
+      glfwGetMonitorWorkarea(monitor, &areaX, &areaY, &areaWidth, &areaHeight);
+    size = fitWindowToWorkArea(size, areaWidth, areaHeight);
+  }
+  GLFWwindow* window = glfwCreateWindow(size.width, size.height,
                                         "kdswap: parallel volume rendering with binary-swap compositing", nullptr, nullptr);
   if (!window) {
     glfwTerminate();

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "ui/window_size.h"
 #include "core/volume/reader.h"
 
 namespace kdswap {
@@ -21,7 +22,8 @@ struct GuiOptions {
   std::string tf;                       //!< preset name or JSON path; empty: the data set's preset
   int imageSize = 512;                  //!< rendered frame is imageSize x imageSize
   std::string up = "+z";                //!< volume axis up on screen (parseUpAxis); R keeps it
-  int windowWidth = 1600, windowHeight = 1000;
+  int windowWidth = kDefaultWindowSize.width, windowHeight = kDefaultWindowSize.height;
+  bool windowSizeGiven = false;         //!< --size given: open at exactly that size; else fit the screen
   std::string screenshot;               //!< write the window to this PNG before exiting
   int frames = 0;                       //!< > 0: exit after this many UI frames once the first full frame is shown
   std::string layout;                   //!< with --screenshot: JSON of where panels drew (for tests)

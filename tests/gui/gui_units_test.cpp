@@ -22,6 +22,7 @@
 #include "ui/render_worker.h"
 #include "ui/sweep_worker.h"
 #include "ui/timeline_layout.h"
+#include "ui/window_size.h"
 
 namespace kdswap {
 namespace {
@@ -390,6 +391,21 @@ TEST_CASE("gui timeline: rows fill the panel at 8 and 64 nodes, and scroll at 51
   CHECK(visibleRows(rows, 4096, 100, 370) == std::pair<int, int>(50, 235));
   CHECK(visibleRows(rows, 4096, 8192 - 370, 370) == std::pair<int, int>(4096 - 185, 4096));
   CHECK(visibleRows(eight, 8, 0, 370) == std::pair<int, int>(0, 8));
+}
+
+TEST_CASE("gui_window_opens_at_its_default_size_or_the_screen_if_smaller") {
+  const WindowSize wanted = kDefaultWindowSize;  // 1600 x 1000
+  const auto fitted = [&](int w, int h) {
+    const WindowSize s = fitWindowToWorkArea(wanted, w, h);
+    return std::to_string(s.width) + "x" + std::to_string(s.height);
+  };
+  CHECK(fitted(1920, 1050) == "1600x1000");  // a large screen: as wanted
+  CHECK(fitted(1600, 1000) == "1600x1000");  // exactly fits (Xvfb in the tests)
+  CHECK(fitted(1366, 740) == "1366x700");    // a laptop: its width, its height less a title bar
+  CHECK(fitted(1920, 900) == "1600x860");    // only the height is short
+  CHECK(fitted(600, 400) == "640x480");      // never below the smallest the panels lay out in
+  CHECK(fitted(0, 0) == "1600x1000");        // no monitor reported: as wanted
+  CHECK(fitWindowToWorkArea(WindowSize{800, 600}, 1366, 740).width == 800);  // never grown
 }
 
 }  // namespace kdswap
