@@ -16,6 +16,7 @@
 #include "ui/gui_app.h"
 #include "core/util/printable_text.h"
 #include "core/util/text_items.h"
+#include "ui/ui_scale.h"
 #include "ui/window_size.h"
 
 int main(int argc, char** argv) {
@@ -62,8 +63,12 @@ int main(int argc, char** argv) {
   app.add_option("--up", o.up,
                  "Volume axis pointing up on screen: +x -x +y -y +z -z (as kdswap render; also a list under Rendering)")
       ->capture_default_str();
-  app.add_option("--size", windowSize, "Window size WxH (default: 1600x1000, or the screen if that is smaller)")
+  app.add_option("--size", windowSize,
+                 "Window size WxH (default: 1600x1000 times --ui-scale, or the screen if that is smaller)")
       ->capture_default_str();
+  app.add_option("--ui-scale", o.uiScale,
+                 "Draw text and panels this many times larger, 0.5..4 (default: the screen's own scale, 2 on a 4K "
+                 "screen set to 200%; 1.5 or 2 for a projector)");
   app.add_option("--screenshot", o.screenshot,
                  "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed "
                  "(default 30), or when --script ends; then exit");
@@ -99,6 +104,8 @@ int main(int argc, char** argv) {
       throw kdswap::Error("--size \"" + windowSize + "\": expected WxH, from 320x240 to 16384x16384");
     o.windowWidth = int(*width), o.windowHeight = int(*height);
     o.windowSizeGiven = app.count("--size") > 0;
+    if (app.count("--ui-scale") && !(o.uiScale >= kdswap::kMinUiScale && o.uiScale <= kdswap::kMaxUiScale))
+      throw kdswap::Error("--ui-scale " + app.get_option("--ui-scale")->as<std::string>() + ": expected 0.5..4");
     if (app.count("--frames") && o.frames < 1) throw kdswap::Error("--frames " + std::to_string(o.frames) + ": expected at least 1");
     if (!o.screenshot.empty() && o.frames == 0 && o.script.empty()) o.frames = 30;
     if (!o.layout.empty() && o.screenshot.empty()) throw kdswap::Error("--layout needs --screenshot");

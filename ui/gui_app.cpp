@@ -32,6 +32,7 @@
 #include "ui/panels.h"
 #include "core/util/printable_text.h"
 #include "ui/state_dump.h"
+#include "ui/ui_scale.h"
 #include "ui/window_size.h"
 
 namespace kdswap {
@@ -212,7 +213,7 @@ void waitForFrame(double& deadline) {
 void writeLayout(const std::string& path, const GuiState& state, int width, int height) {
   auto rect = [](const ImVec4& r) { return nlohmann::json::array({r.x, r.y, r.z, r.w}); };
   nlohmann::json j;
-  j["window"] = {{"width", width}, {"height", height}};
+  j["window"] = {{"width", width}, {"height", height}, {"ui_scale", uiScale()}, {"font_px", ImGui::GetFontSize()}};
   j["viewport"] = rect(state.layout.viewport);
   nlohmann::json cells = nlohmann::json::array();
   for (const DrawnLayout::Cell& c : state.layout.cells) cells.push_back({{"node", c.node}, {"phase", c.phase}, {"rect", rect(c.rect)}});
@@ -250,12 +251,19 @@ void setUpImGui(GLFWwindow* window) {
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // a fixed first-run layout every time (no docking in Debian's 1.86)
   const char* font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-  if (std::filesystem::exists(font)) io.Fonts->AddFontFromFileTTF(font, 15.0f);
+  if (std::filesystem::exists(font)) {
+    io.Fonts->AddFontFromFileTTF(font, scaled(kBaseFontSize));
+  } else if (uiScale() != 1.0f) {
+    ImFontConfig config;
+    config.SizePixels = scaled(13.0f);  // ImGui's own font is 13 pixels
+    io.Fonts->AddFontDefault(&config);
+  }
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 0.0f;
   style.FrameRounding = 3.0f;
   style.WindowBorderSize = 1.0f;
+  style.ScaleAllSizes(uiScale());
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 }
@@ -393,8 +401,17 @@ int runGui(const GuiOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  // The monitor's content scale (2 on a 4K screen set to 200%), unless --ui-scale gives one.
+  float scale = options.uiScale;
+  if (!(scale > 0.0f)) {
+    float xScale = 1.0f, yScale = 1.0f;
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) glfwGetMonitorContentScale(monitor, &xScale, &yScale);
+    scale = std::clamp(std::isfinite(xScale) ? xScale : 1.0f, 1.0f, kMaxUiScale);
+  }
+  setUiScale(scale);
   WindowSize size{options.windowWidth, options.windowHeight};
   if (!options.windowSizeGiven) {
+    size = WindowSize{int(std::lround(float(size.width) * scale)), int(std::lround(float(size.height) * scale))};
     int areaX = 0, areaY = 0, areaWidth = 0, areaHeight = 0;
     if (GLFWmonitor* monitor = glfwGetPrimaryMonitor())
       glfwGetMonitorWorkarea(monitor, &areaX, &areaY, &areaWidth, &areaHeight);

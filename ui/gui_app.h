@@ -24,6 +24,7 @@ struct GuiOptions {
   std::string up = "+z";                //!< volume axis up on screen (parseUpAxis); R keeps it
   int windowWidth = kDefaultWindowSize.width, windowHeight = kDefaultWindowSize.height;
   bool windowSizeGiven = false;         //!< --size given: open at exactly that size; else fit the screen
+  float uiScale = 0.0f;                 //!< --ui-scale; 0: the monitor's content scale (ui/ui_scale.h)
   std::string screenshot;               //!< write the window to this PNG before exiting
   int frames = 0;                       //!< > 0: exit after this many UI frames once the first full frame is shown
   std::string layout;                   //!< with --screenshot: JSON of where panels drew (for tests)

@@ -5,13 +5,14 @@
 #include <cstdio>
 #include <string>
 
+#include "ui/ui_scale.h"
 #include "ui/panels.h"
 
 namespace kdswap {
 namespace {
 
 constexpr double kSecondsPerPhase = 0.8;
-constexpr float kMinCell = 20.0f, kGap = 3.0f;
+constexpr float kMinCell = 20.0f, kGap = 3.0f, kHeaderRow = 18.0f;  // pixels at scale 1 (ui_scale.h)
 const ImU32 kOutline = IM_COL32(255, 204, 26, 255);
 
 std::string phaseName(const PhaseRecord& record, int phase) {
@@ -37,7 +38,7 @@ void drawControls(GuiState& state, const PhaseRecord& record) {
   StagesUi& ui = state.stages;
   const int last = record.phaseCount() - 1;
   if (ui.phase < 0 || ui.phase > last) ui.phase = last;
-  if (ImGui::Button(ui.playing ? "Pause" : "Play", ImVec2(60, 0))) {
+  if (ImGui::Button(ui.playing ? "Pause" : "Play", ImVec2(scaled(60), 0))) {
     ui.playing = !ui.playing;
     if (ui.playing && ui.phase >= last) ui.phase = 0;
     ui.nextStepAt = ImGui::GetTime() + kSecondsPerPhase;
@@ -53,8 +54,8 @@ void drawControls(GuiState& state, const PhaseRecord& record) {
   sameLineIfFits(labelledWidth(sliderW, "phase"));
   ImGui::SetNextItemWidth(sliderW);
   if (ImGui::SliderInt("phase", &ui.phase, 0, last, name.c_str())) ui.playing = false;
-  sameLineIfFits(labelledWidth(110, "zoom"));
-  ImGui::SetNextItemWidth(110);
+  sameLineIfFits(labelledWidth(scaled(110), "zoom"));
+  ImGui::SetNextItemWidth(scaled(110));
   ImGui::SliderFloat("zoom", &ui.cellScale, 0.5f, 4.0f, "%.1fx");
   // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on the chained operator+.
   std::string size = "(";
@@ -158,10 +159,11 @@ void drawStagesPanel(GuiState& state) {
     labelWidth = std::max(labelWidth, ImGui::CalcTextSize(phaseName(record, phase).c_str()).x + 8);
   labelWidth = std::min(labelWidth, std::max(40.0f, ImGui::GetContentRegionAvail().x / 3));
   // Cells fit the width, then the zoom scales them; the child scrolls when they do not fit.
-  const float availW = ImGui::GetContentRegionAvail().x - labelWidth - 2 * kGap - ImGui::GetStyle().ScrollbarSize;
-  const float cellW = std::max(kMinCell, (availW / float(atlas.columns) - kGap) * ui.cellScale);
+  const float gap = scaled(kGap), header = scaled(kHeaderRow);
+  const float availW = ImGui::GetContentRegionAvail().x - labelWidth - 2 * gap - ImGui::GetStyle().ScrollbarSize;
+  const float cellW = std::max(scaled(kMinCell), (availW / float(atlas.columns) - gap) * ui.cellScale);
   const float cellH = cellW * float(atlas.cellHeight) / float(atlas.cellWidth);
-  const float gridH = 18.0f + float(atlas.rows) * (cellH + kGap) + ImGui::GetStyle().ScrollbarSize + 4;
+  const float gridH = header + float(atlas.rows) * (cellH + gap) + ImGui::GetStyle().ScrollbarSize + 4;
   const bool selection = ui.selectedNode >= 0;
   const float childH = std::min(gridH, ImGui::GetContentRegionAvail().y * (selection ? 0.55f : 1.0f));
   ImGui::BeginChild("grid", ImVec2(0, childH), false, ImGuiWindowFlags_HorizontalScrollbar);
@@ -170,20 +172,20 @@ void drawStagesPanel(GuiState& state) {
   const ImVec2 aw(float(atlas.pixels.width), float(atlas.pixels.height));
   for (int node = 0; node < atlas.columns; ++node) {
     const std::string label = std::to_string(node);
-    const float x = origin.x + labelWidth + float(node) * (cellW + kGap);
+    const float x = origin.x + labelWidth + float(node) * (cellW + gap);
     draw->AddText(ImVec2(x + 0.5f * (cellW - ImGui::CalcTextSize(label.c_str()).x), origin.y), nodeColour(node),
                   label.c_str());
   }
   state.layout.columns = atlas.columns;
   state.layout.rows = atlas.rows;
   for (int phase = 0; phase < atlas.rows; ++phase) {
-    const float y = origin.y + 18.0f + float(phase) * (cellH + kGap);
+    const float y = origin.y + header + float(phase) * (cellH + gap);
     const bool revealed = phase <= ui.phase;
     const std::string name = fitText(phaseName(record, phase), labelWidth - 6);
     draw->AddText(ImVec2(origin.x, y + 0.5f * cellH - 7), revealed ? IM_COL32(220, 220, 220, 255) : IM_COL32(110, 110, 110, 255),
                   name.c_str());
     for (int node = 0; node < atlas.columns; ++node) {
-      const ImVec2 p0(origin.x + labelWidth + float(node) * (cellW + kGap), y), p1(p0.x + cellW, p0.y + cellH);
+      const ImVec2 p0(origin.x + labelWidth + float(node) * (cellW + gap), y), p1(p0.x + cellW, p0.y + cellH);
       ImGui::SetCursorScreenPos(p0);
       ImGui::PushID(phase * atlas.columns + node);
       ImGui::InvisibleButton("cell", ImVec2(cellW, cellH));
@@ -212,7 +214,7 @@ void drawStagesPanel(GuiState& state) {
     }
   }
   ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + gridH - ImGui::GetStyle().ScrollbarSize - 4));
-  ImGui::Dummy(ImVec2(labelWidth + float(atlas.columns) * (cellW + kGap), 1));
+  ImGui::Dummy(ImVec2(labelWidth + float(atlas.columns) * (cellW + gap), 1));
   ImGui::EndChild();
   if (selection) drawSelection(state, record, atlas);
   else drawFinalTiles(state, record);

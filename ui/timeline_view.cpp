@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "ui/ui_scale.h"
 #include "ui/panels.h"
 #include "ui/timeline_layout.h"
 
@@ -39,10 +40,11 @@ ImU32 colourOf(const TimelineBar& bar, bool hasBricks) {
 
 // A legend entry after the previous one, or on the next line when the line is full.
 void legendSwatch(ImU32 colour, const char* text, bool first, bool thin = false) {
-  if (!first) sameLineIfFits(12 + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize(text).x);
+  if (!first) sameLineIfFits(scaled(12) + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize(text).x);
   const ImVec2 p = ImGui::GetCursorScreenPos();
-  ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + (thin ? 7 : 3)), ImVec2(p.x + 10, p.y + (thin ? 9 : 13)), colour);
-  ImGui::Dummy(ImVec2(12, 14));
+  ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + scaled(thin ? 7 : 3)),
+                                            ImVec2(p.x + scaled(10), p.y + scaled(thin ? 9 : 13)), colour);
+  ImGui::Dummy(ImVec2(scaled(12), scaled(14)));
   ImGui::SameLine();
   ImGui::TextUnformatted(text);
 }
@@ -222,12 +224,12 @@ void drawTimelineTab(const FrameSnapshot& frame, TimelineUi& ui) {
   const float axisH = 2 * lineH + 10;
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float childH = std::max(avail.y - axisH - ImGui::GetStyle().ItemSpacing.y, 2 * kMinRow);
-  const TimelineRows rows = timelineRows(nodes, childH, kMinRow, kMaxRow, lineH + 2);
+  const TimelineRows rows = timelineRows(nodes, childH, kMinRow, scaled(kMaxRow), lineH + 2);
   const float labelW = ImGui::CalcTextSize(std::to_string(std::max(nodes - 1, 0)).c_str()).x + 6;
   const float scrollbar = rows.total > childH ? ImGui::GetStyle().ScrollbarSize : 0.0f;
   const float barW = std::max(avail.x - labelW - 4 - scrollbar, 20.0f);
   const double span = timelineSpan(stats, !chart.timeline);
-  const double step = tickStep(span, barW, kMinTickPixels);
+  const double step = tickStep(span, barW, scaled(kMinTickPixels));
   chart.scale = double(barW) / span;
 
   ImGui::BeginChild("timeline", ImVec2(0, childH), false);

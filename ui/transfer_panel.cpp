@@ -9,13 +9,14 @@
 
 #include "core/transfer/presets.h"
 #include "core/util/error.h"
+#include "ui/ui_scale.h"
 #include "ui/panels.h"
 
 namespace kdswap {
 namespace {
 
-constexpr float kPointRadius = 5.0f;
-constexpr float kCurveHeight = 150.0f, kColourBarHeight = 14.0f;
+constexpr float kPointRadiusAt1 = 5.0f;  // pixels at scale 1 (ui_scale.h), as the two below
+constexpr float kCurveHeightAt1 = 150.0f, kColourBarHeightAt1 = 14.0f;
 
 // Opacities are per voxel and mostly small; a square-root axis makes 0.01 visible.
 float alphaToY(float a) { return std::sqrt(std::clamp(a, 0.0f, 1.0f)); }
@@ -73,15 +74,17 @@ void drawPresetRow(GuiState& state) {
 }
 
 void drawCurve(GuiState& state) {
+  const float pointRadius = scaled(kPointRadiusAt1), curveHeight = scaled(kCurveHeightAt1),
+              barHeight = scaled(kColourBarHeightAt1);
   TransferFunction& tf = state.request.transfer;
   const Histogram empty;
   const Histogram& histogram = state.sceneShown ? state.sceneShown->histogram : empty;
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   const float width = std::max(ImGui::GetContentRegionAvail().x, 50.0f);
-  ImGui::InvisibleButton("curve", ImVec2(width, kCurveHeight), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+  ImGui::InvisibleButton("curve", ImVec2(width, curveHeight), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  const ImVec2 p1(p0.x + width, p0.y + kCurveHeight);
+  const ImVec2 p1(p0.x + width, p0.y + curveHeight);
   draw->AddRectFilled(p0, p1, IM_COL32(24, 24, 30, 255));
   if (!histogram.bins.empty()) {
     // Integer data's bins are centred on whole values, so the outer ones reach half a bin past
@@ -90,18 +93,18 @@ void drawCurve(GuiState& state) {
     const float n = float(histogram.bins.size()), span = histogram.x1 - histogram.x0;
     for (std::size_t i = 0; i < histogram.bins.size(); ++i) {
       const float a = histogram.x0 + span * float(i) / n, b = histogram.x0 + span * float(i + 1) / n;
-      draw->AddRectFilled(ImVec2(p0.x + a * width, p1.y - histogram.bins[i] * kCurveHeight),
+      draw->AddRectFilled(ImVec2(p0.x + a * width, p1.y - histogram.bins[i] * curveHeight),
                           ImVec2(p0.x + b * width, p1.y), IM_COL32(90, 90, 110, 255));
     }
     draw->PopClipRect();
   }
   for (float a : {0.01f, 0.1f, 0.5f}) {
-    const float y = p1.y - alphaToY(a) * kCurveHeight;
+    const float y = p1.y - alphaToY(a) * curveHeight;
     draw->AddLine(ImVec2(p0.x, y), ImVec2(p1.x, y), IM_COL32(255, 255, 255, 30));
     draw->AddText(ImVec2(p0.x + 2, y - 14), IM_COL32(255, 255, 255, 80), a < 0.1f ? "0.01" : (a < 0.5f ? "0.1" : "0.5"));
   }
   auto toScreen = [&](const OpacityPoint& o) {
-    return ImVec2(p0.x + o.x * width, p1.y - alphaToY(o.alpha) * kCurveHeight);
+    return ImVec2(p0.x + o.x * width, p1.y - alphaToY(o.alpha) * curveHeight);
   };
   std::vector<OpacityPoint> points = tf.opacity();
   // The renderer interpolates opacity linearly between control points (and holds the end values
@@ -131,12 +134,12 @@ void drawCurve(GuiState& state) {
   int near = -1;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const ImVec2 s = toScreen(points[i]);
-    if (std::abs(s.x - mouse.x) <= kPointRadius + 2 && std::abs(s.y - mouse.y) <= kPointRadius + 2) near = int(i);
+    if (std::abs(s.x - mouse.x) <= pointRadius + 2 && std::abs(s.y - mouse.y) <= pointRadius + 2) near = int(i);
   }
   int& dragged = state.transfer.draggedPoint;
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) dragged = near;
   if (!active) dragged = -1;
-  const float mx = std::clamp((mouse.x - p0.x) / width, 0.0f, 1.0f), my = yToAlpha((p1.y - mouse.y) / kCurveHeight);
+  const float mx = std::clamp((mouse.x - p0.x) / width, 0.0f, 1.0f), my = yToAlpha((p1.y - mouse.y) / curveHeight);
   if (dragged >= 0 && dragged < int(points.size()) && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)) {
     OpacityPoint& o = points[std::size_t(dragged)];
     // End points keep their x; inner points stay between their neighbours so the order holds.
@@ -160,7 +163,7 @@ void drawCurve(GuiState& state) {
     const ImVec2 s = toScreen(tf.opacity()[i]);
     state.layout.tfPoints.push_back(s);
     const bool hot = int(i) == near || int(i) == dragged;
-    draw->AddCircleFilled(s, hot ? kPointRadius + 1.5f : kPointRadius, hot ? IM_COL32(255, 210, 60, 255) : IM_COL32(240, 240, 240, 255));
+    draw->AddCircleFilled(s, hot ? pointRadius + 1.5f : pointRadius, hot ? IM_COL32(255, 210, 60, 255) : IM_COL32(240, 240, 240, 255));
   }
   if (hovered)
     ImGui::SetTooltip(near >= 0 ? "value %.3f, opacity %.4f\ndrag to move, right-click to remove"
@@ -173,10 +176,10 @@ void drawCurve(GuiState& state) {
   const int steps = 64;
   for (int i = 0; i < steps; ++i) {
     const glm::vec4 a = tf.evaluate(float(i) / steps), b = tf.evaluate(float(i + 1) / steps);
-    draw->AddRectFilledMultiColor(ImVec2(c0.x + width * float(i) / steps, c0.y), ImVec2(c0.x + width * float(i + 1) / steps, c0.y + kColourBarHeight),
+    draw->AddRectFilledMultiColor(ImVec2(c0.x + width * float(i) / steps, c0.y), ImVec2(c0.x + width * float(i + 1) / steps, c0.y + barHeight),
                                   ImColor(a.r, a.g, a.b), ImColor(b.r, b.g, b.b), ImColor(b.r, b.g, b.b), ImColor(a.r, a.g, a.b));
   }
-  ImGui::Dummy(ImVec2(width, kColourBarHeight + 2));
+  ImGui::Dummy(ImVec2(width, barHeight + 2));
 }
 
 void drawColourStops(GuiState& state) {
