@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/raw_layout_options.h"
+#include "app/scene_options.h"
 #include "core/cluster/virtual_cluster.h"
 #include "core/composite/registry.h"
 #include "core/util/error.h"
@@ -40,7 +41,9 @@ int main(int argc, char** argv) {
       ->excludes(datasetOption);
   kdswap::RawLayoutOptions raw;
   kdswap::addRawLayoutOptions(&app, raw);
+  // Numbers are checked as kdswap's are ("abc" is not a whole number), before the ranges below.
   app.add_option("--nodes,-n", o.nodes, "Number of virtual nodes P, 1.." + std::to_string(kdswap::kMaxNodes))
+      ->check(kdswap::wholeNumber())
       ->capture_default_str();
   app.add_option("--partition", o.partition, "kd or slab")->capture_default_str();
   app.add_option("--composite", o.composite, "Compositing strategy: " + kdswap::strategyNameList())
@@ -50,6 +53,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--bricks-per-node", o.bricksPerNode,
                  "Over-decomposition: each node's brick cut into this many (1..64), handed out on demand")
+      ->check(kdswap::wholeNumber())
       ->capture_default_str();
   app.add_flag("--waves", o.waves,
                "Front-to-back waves (beyond the paper): nodes render nearest first and stop where the light in front "
@@ -57,9 +61,12 @@ int main(int argc, char** argv) {
   app.add_option("--refine", o.refinePasses,
                  "Once the view rests, average this many frames on shifted sampling lattices (1..64, 1: off), "
                  "which takes the grain and rings out; also a slider under Rendering")
+      ->check(kdswap::wholeNumber())
       ->capture_default_str();
   app.add_option("--tf", o.tf, "Transfer-function preset or JSON file (default: the data set's preset)");
-  app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels, 16..4096")->capture_default_str();
+  app.add_option("--image-size", o.imageSize, "Rendered frame is N x N pixels, 16..4096")
+      ->check(kdswap::wholeNumber())
+      ->capture_default_str();
   app.add_option("--up", o.up,
                  "Volume axis pointing up on screen: +x -x +y -y +z -z (as kdswap render; also a list under Rendering)")
       ->capture_default_str();
@@ -68,11 +75,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--ui-scale", o.uiScale,
                  "Draw text and panels this many times larger, 0.5..4 (default: the screen's own scale, 2 on a 4K "
-                 "screen set to 200%; 1.5 or 2 for a projector)");
+                 "screen set to 200%; 1.5 or 2 for a projector)")
+      ->check(kdswap::number());
   app.add_option("--screenshot", o.screenshot,
                  "Write the whole window to this PNG once the first frame has rendered and --frames UI frames passed "
                  "(default 30), or when --script ends; then exit");
-  app.add_option("--frames", o.frames, "Exit after N UI frames once the first full frame is shown");
+  app.add_option("--frames", o.frames, "Exit after N UI frames once the first full frame is shown")
+      ->check(kdswap::wholeNumber());
   app.add_option("--layout", o.layout, "With --screenshot: also write where the viewport and stage cells were drawn (JSON)");
   app.add_option("--script", o.script,
                  "Play synthetic mouse and keyboard input from FILE, then exit. One command a line, # comments: "

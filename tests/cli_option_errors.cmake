@@ -168,6 +168,13 @@ if(TARGET kdswap-gui)
                   EXPECT "kdswap-gui: --up .q.: expected one of \\+x -x \\+y -y \\+z -z" ARGS --up q)
   kdswap_cli_case(GuiRefinePassesOutsideTheirRangeAreRefused PROGRAM kdswap-gui
                   EXPECT "kdswap-gui: --refine 0: expected 1\\.\\.64" ARGS --refine 0)
+  # Numbers are read as kdswap reads them, not with the argument parser's own words.
+  kdswap_cli_case(GuiNodesThatAreNotAWholeNumberAreRefused PROGRAM kdswap-gui
+                  EXPECT "kdswap-gui: --nodes: .1\\.5. is not a whole number" ARGS --nodes 1.5)
+  kdswap_cli_case(GuiUiScaleOutsideItsRangeIsRefused PROGRAM kdswap-gui
+                  EXPECT "kdswap-gui: --ui-scale 5: expected 0\\.5\\.\\.4" ARGS --ui-scale 5)
+  kdswap_cli_case(GuiWindowSizeWithAThirdSideIsRefused PROGRAM kdswap-gui
+                  EXPECT "kdswap-gui: --size .1600x1000x5.: expected WxH" ARGS --size 1600x1000x5)
 endif()
 
 # Front-to-back waves render each node's one brick in visibility order: over-decomposition (bricks
