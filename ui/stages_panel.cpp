@@ -86,7 +86,7 @@ void drawSelection(GuiState& state, const PhaseRecord& record, const StageAtlas&
     const float s = w / float(record.frame.w);
     ImGui::GetWindowDrawList()->AddRect(ImVec2(at.x + cell.region.x * s, at.y + cell.region.y * s),
                                         ImVec2(at.x + cell.region.right() * s, at.y + cell.region.bottom() * s), kOutline,
-                                        0.0f, 0, 2.0f);
+                                        0.0f, 0, scaled(2.0f));
   }
   ImGui::SameLine();
   ImGui::BeginGroup();
@@ -205,11 +205,11 @@ void drawStagesPanel(GuiState& state) {
       }
       if (phase == ui.phase && ui.playing) draw->AddRect(p0, p1, IM_COL32(255, 255, 255, 120));
       if (ImGui::IsItemHovered()) {
-        draw->AddRect(p0, p1, IM_COL32(255, 255, 255, 255), 0.0f, 0, 2.0f);
+        draw->AddRect(p0, p1, IM_COL32(255, 255, 255, 255), 0.0f, 0, scaled(2.0f));
         cellTooltip(state, record, node, phase);
       }
       if (ImGui::IsItemClicked()) ui.selectedNode = node, ui.selectedPhase = phase;
-      if (node == ui.selectedNode && phase == ui.selectedPhase) draw->AddRect(p0, p1, IM_COL32(90, 200, 255, 255), 0, 0, 2);
+      if (node == ui.selectedNode && phase == ui.selectedPhase) draw->AddRect(p0, p1, IM_COL32(90, 200, 255, 255), 0, 0, scaled(2.0f));
       state.layout.cells.push_back({node, phase, ImVec4(p0.x, p0.y, cellW, cellH)});
     }
   }

@@ -9,6 +9,7 @@
 #include <GLFW/glfw3.h>
 #include <glm/common.hpp>
 
+#include "ui/ui_scale.h"
 #include "ui/panels.h"
 #include "core/util/printable_text.h"
 #include "core/camera/camera.h"
@@ -124,7 +125,7 @@ void drawBricks(const GuiState& state, ImVec4 shown) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->PushClipRect(ImVec2(shown.x, shown.y), ImVec2(shown.x + shown.z, shown.y + shown.w), true);
   const int ranks = scene.tree.ranks();
-  const float thickness = ranks > 32 ? 1.0f : 1.5f;
+  const float thickness = scaled(ranks > 32 ? 1.0f : 1.5f);
   for (int rank = 0; rank < ranks; ++rank) {
     const VoxelBox& box = scene.tree.brick(rank);
     const glm::vec3 lo = glm::vec3(box.lo) * scene.info.spacing;
