@@ -48,9 +48,10 @@ TEST_CASE("a data set's size is N or WxHxD, each a whole number from 2 to 8192")
   CHECK(openDataset("phantom:40")->info().dims == glm::ivec3(40));
   CHECK(openDataset("vessels:32x48x64")->info().dims == glm::ivec3(32, 48, 64));
   CHECK(openDataset("turbulence:+16x2x8192")->info().dims == glm::ivec3(16, 2, 8192));
+  CHECK(openDataset("phantom: 32 x 48 x 64")->info().dims == glm::ivec3(32, 48, 64));  // spaces are fine
   // A stray separator is refused, not dropped: "64x" must not quietly mean 64^3.
   for (const char* spec : {"phantom:64x", "phantom:64x64x64x", "phantom:64xx64", "phantom:x64", "phantom:",
-                           "phantom:64x64", "phantom:0x40", "phantom:6.5", "phantom: 64", "phantom:+-64"}) {
+                           "phantom:64x64", "phantom:0x40", "phantom:6.5", "phantom:6 4", "phantom:+-64"}) {
     CAPTURE(spec);
     CHECK_THROWS_WITH_AS(openDataset(spec), doctest::Contains("is not N or WxHxD"), Error);
   }

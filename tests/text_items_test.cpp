@@ -20,13 +20,15 @@ TEST_CASE("splitItems keeps every item, empty ones too") {
   CHECK(splitItems(",", ',') == Items{"", ""});
 }
 
-TEST_CASE("parseWholeNumber takes decimal digits with an optional sign, and nothing else") {
+TEST_CASE("parseWholeNumber takes decimal digits with an optional sign, spaces around them, and nothing else") {
   CHECK(parseWholeNumber("64") == 64);
   CHECK(parseWholeNumber("+64") == 64);
   CHECK(parseWholeNumber("-3") == -3);
   CHECK(parseWholeNumber("0") == 0);
   CHECK(parseWholeNumber("9223372036854775807") == 9223372036854775807LL);
-  for (const char* bad : {"", "+", "-", "+-1", "++1", " 64", "64 ", "64x", "0x40", "6.0", "1e3", "abc",
+  CHECK(parseWholeNumber(" 64 ") == 64);  // "1, 2, 4": spaces after the commas are fine
+  CHECK(parseWholeNumber("\t-2") == -2);
+  for (const char* bad : {"", " ", "+", "-", "+-1", "++1", "6 4", "- 4", "64x", "0x40", "6.0", "1e3", "abc",
                           "9223372036854775808", "99999999999999999999"}) {
     CAPTURE(bad);
     CHECK_FALSE(parseWholeNumber(bad).has_value());

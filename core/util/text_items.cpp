@@ -16,6 +16,8 @@ std::vector<std::string> splitItems(std::string_view text, char separator) {
 }
 
 std::optional<std::int64_t> parseWholeNumber(std::string_view text) {
+  const std::size_t first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
+  text = first == std::string_view::npos ? std::string_view() : text.substr(first, last - first + 1);
   // from_chars takes a '-' but not a '+': one '+' is taken off here, and "+-1" refused.
   if (!text.empty() && text.front() == '+') {
     text.remove_prefix(1);

@@ -14,8 +14,9 @@ namespace kdswap {
 //! parser can refuse "64x" rather than read it as "64" (std::getline drops a trailing empty item).
 std::vector<std::string> splitItems(std::string_view text, char separator);
 
-//! `text` as a whole number: optional sign, then decimal digits only (no spaces, no "0x", no
-//! fraction); nullopt otherwise or when it does not fit 64 bits.
+//! `text` as a whole number: optional sign, then decimal digits (no "0x", no fraction, no exponent),
+//! spaces around it allowed ("1, 2, 4" is a list of three); nullopt otherwise or when it does not
+//! fit 64 bits.
 std::optional<std::int64_t> parseWholeNumber(std::string_view text);
 
 }  // namespace kdswap
