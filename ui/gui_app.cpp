@@ -402,10 +402,11 @@ int runGui(const GuiOptions& options) {
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   // The monitor's content scale (2 on a 4K screen set to 200%), unless --ui-scale gives one.
+  GLFWmonitor* monitor = glfwGetPrimaryMonitor();  // null when none is reported: scale 1, size as asked
   float scale = options.uiScale;
   if (!(scale > 0.0f)) {
     float xScale = 1.0f, yScale = 1.0f;
-    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) glfwGetMonitorContentScale(monitor, &xScale, &yScale);
+    if (monitor) glfwGetMonitorContentScale(monitor, &xScale, &yScale);
     scale = std::clamp(std::isfinite(xScale) ? xScale : 1.0f, 1.0f, kMaxUiScale);
   }
   setUiScale(scale);
@@ -413,8 +414,7 @@ int runGui(const GuiOptions& options) {
   if (!options.windowSizeGiven) {
     size = WindowSize{int(std::lround(float(size.width) * scale)), int(std::lround(float(size.height) * scale))};
     int areaX = 0, areaY = 0, areaWidth = 0, areaHeight = 0;
-    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor())
-      glfwGetMonitorWorkarea(monitor, &areaX, &areaY, &areaWidth, &areaHeight);
+    if (monitor) glfwGetMonitorWorkarea(monitor, &areaX, &areaY, &areaWidth, &areaHeight);
     size = fitWindowToWorkArea(size, areaWidth, areaHeight);
   }
   GLFWwindow* window = glfwCreateWindow(size.width, size.height,
