@@ -226,7 +226,7 @@ void addAnimateCommand(CLI::App& app) {
       "\n"
       "Key file (--keys): a JSON list of keys, or {\"keys\": [...]}, spread evenly over --frames (first key at\n"
       "the first frame, last key at the last) and interpolated linearly. Each key may give\n"
-      "  \"azimuth\" (degrees, not wrapped: 0 then 360 is a full turn), \"elevation\" (degrees, in (-90, 90)),\n"
+      "  \"azimuth\" (degrees, -36000..36000, not wrapped: 0 then 360 is a full turn), \"elevation\" (degrees, in (-90, 90)),\n"
       "  \"distance\" (bounding-sphere radii), \"tf\" (preset or JSON file, relative to the key file;\n"
       "  switches from that key's frame on).  Missing values repeat the previous key's (first: --view).\n"
       "  [{\"azimuth\": 0, \"elevation\": 10, \"distance\": 3},\n"

@@ -328,7 +328,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--degrees", o->degrees, "Azimuth turn per frame, -360..360 degrees")
       ->check(number())
       ->capture_default_str();
-  cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION in degrees (elevation in (-90, 90))")
+  cmd->add_option("--view", o->view, "Starting view AZIMUTH,ELEVATION in degrees (azimuth -36000..36000, elevation in (-90, 90))")
       ->capture_default_str();
   cmd->add_option("--distance", o->distance,
                   "Eye distance in bounding-sphere radii, in (0, 1000); closer than render's default 3.4, so the "

@@ -74,7 +74,8 @@ glm::vec2 parseViewAngles(const std::string& text, const std::string& option) {
   const auto angles = parseNumbers(text, ',', option);
   if (angles.size() != 2) throw Error(option + " \"" + text + "\": expected AZIMUTH,ELEVATION in degrees");
   const glm::vec2 v{float(angles[0]), float(angles[1])};
-  if (!std::isfinite(v.x)) throw Error(option + " \"" + text + "\": azimuth is too large for a float");
+  if (!(std::fabs(v.x) <= kMaxAzimuthDegrees))
+    throw Error(option + " \"" + text + "\": azimuth must be from -36000 to 36000 degrees (100 turns)");
   // The same range as --elevation-sweep and key files; the camera is undefined at the poles.
   if (!(v.y > -90.0f && v.y < 90.0f))
     throw Error(option + " \"" + text + "\": elevation must be in (-90, 90) degrees");
@@ -183,7 +184,7 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& o) {
                   "a renderer that ignores the header's spacing)")
       ->check(nonEmpty());
   cmd->add_option("--size", o.size, "Image size WxH (1..16384 each)")->check(nonEmpty())->capture_default_str();
-  cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees (elevation in (-90, 90))")
+  cmd->add_option("--view", o.view, "Orbit view AZIMUTH,ELEVATION in degrees (azimuth -36000..36000, elevation in (-90, 90))")
       ->check(nonEmpty())
       ->capture_default_str();
   cmd->add_option("--distance", o.distance, "Eye distance in bounding-sphere radii, in (0, 1000); the default shows the whole volume")

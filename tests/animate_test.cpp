@@ -111,6 +111,9 @@ TEST_CASE("malformed keys are rejected with the index of the bad key") {
   CHECK_THROWS_WITH_AS(parseCameraKeys(nlohmann::json::parse(R"([{"azimut": 3}])"), "k.json"),
                        doctest::Contains("unknown field"), Error);
   CHECK_THROWS_AS(parseCameraKeys(nlohmann::json::array(), "k.json"), Error);
+  CHECK_THROWS_WITH_AS(parseCameraKeys(nlohmann::json::parse(R"([{"azimuth": 0}, {"azimuth": 1e9}])"), "k.json"),
+                       "k.json: key 1: \"azimuth\" must be from -36000 to 36000 degrees (100 turns)", Error);
+  CHECK(parseCameraKeys(nlohmann::json::parse(R"([{"azimuth": -36000}])"), "k.json")[0].azimuthDeg == -36000.0f);
   CHECK_THROWS_AS(CameraPath::orbit(View{}, 360.0f, 0), Error);
   CHECK(CameraPath::orbit(View{}, -kMaxOrbitDegrees, 4).frame(3).view.azimuthDeg == View{}.azimuthDeg - 27000.0f);
   CHECK_THROWS_WITH_AS(CameraPath::orbit(View{}, 1e9f, 36), "orbit: degrees must be from -36000 to 36000 (100 turns)", Error);

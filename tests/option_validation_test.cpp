@@ -177,6 +177,8 @@ TEST_CASE("--view elevation outside (-90, 90) is refused, not clamped; the range
   for (const char* bad : {"0,1000", "0,90", "0,-90", "0,-91"})
     expectRefused(kRender + png + " --view " + bad, {"--view", "elevation", "(-90, 90)"});
   expectRefused(kRender + png + " --view 1e39,0", {"--view", "azimuth"});
+  expectRefused(kRender + png + " --view 1e9,0", {"--view", "azimuth", "-36000 to 36000"});
+  expectRefused(kBench + "--view -36001,15 --out-dir " + dir.file("b"), {"--view", "azimuth", "-36000 to 36000"});
   expectRefused(kAnimate + "--out-dir " + dir.file("a") + " --view 0,95", {"--view", "(-90, 90)"});
   CHECK(run(kRender + png + " --view 400,89.5").code == 0);
   CHECK(run("render --help").out.find("(-90, 90)") != std::string::npos);

@@ -134,7 +134,11 @@ std::vector<CameraKey> parseCameraKeys(const nlohmann::json& j, const std::strin
       if (name != "azimuth" && name != "elevation" && name != "distance" && name != "tf")
         throw Error(at + ": unknown field \"" + name + "\" (expected azimuth, elevation, distance, tf)");
     CameraKey key;
-    if (item.contains("azimuth")) key.azimuthDeg = readNumber(item, "azimuth", where, i);
+    if (item.contains("azimuth")) {
+      key.azimuthDeg = readNumber(item, "azimuth", where, i);
+      if (!(std::fabs(*key.azimuthDeg) <= kMaxAzimuthDegrees))
+        throw Error(at + ": \"azimuth\" must be from -36000 to 36000 degrees (100 turns)");
+    }
     if (item.contains("elevation")) {
       key.elevationDeg = readNumber(item, "elevation", where, i);
       if (!validElevation(*key.elevationDeg)) throw Error(at + ": \"elevation\" must be in (-90, 90) degrees");

@@ -9,6 +9,10 @@ namespace kdswap {
 
 enum class Projection { Perspective, Orthographic };
 
+//! A view's or a key's azimuth is at most this many degrees either way (100 turns): a float
+//! azimuth keeps a 0.004-degree step there, where 1e9 degrees would be some angle no one chose.
+inline constexpr float kMaxAzimuthDegrees = 36000.0f;
+
 //! Which volume axis points up on screen ("+z" by default; CT stacks often want "-z").
 enum class UpAxis { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
 
