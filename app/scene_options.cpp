@@ -74,7 +74,7 @@ glm::vec2 parseViewAngles(const std::string& text, const std::string& option) {
   const auto angles = parseNumbers(text, ',', option);
   if (angles.size() != 2) throw Error(option + " \"" + text + "\": expected AZIMUTH,ELEVATION in degrees");
   const glm::vec2 v{float(angles[0]), float(angles[1])};
-  if (!(std::fabs(v.x) <= kMaxAzimuthDegrees))
+  if (!validAzimuth(v.x))
     throw Error(option + " \"" + text + "\": azimuth must be from -36000 to 36000 degrees (100 turns)");
   // The same range as --elevation-sweep and key files; the camera is undefined at the poles.
   if (!(v.y > -90.0f && v.y < 90.0f))

@@ -136,7 +136,7 @@ std::vector<CameraKey> parseCameraKeys(const nlohmann::json& j, const std::strin
     CameraKey key;
     if (item.contains("azimuth")) {
       key.azimuthDeg = readNumber(item, "azimuth", where, i);
-      if (!(std::fabs(*key.azimuthDeg) <= kMaxAzimuthDegrees))
+      if (!validAzimuth(*key.azimuthDeg))
         throw Error(at + ": \"azimuth\" must be from -36000 to 36000 degrees (100 turns)");
     }
     if (item.contains("elevation")) {

@@ -14,8 +14,8 @@
 namespace kdswap {
 
 inline constexpr int kMaxAnimationFrames = 100000;
-//! An orbit turns at most this many degrees either way (100 turns).
-inline constexpr float kMaxOrbitDegrees = 36000.0f;
+//! An orbit turns at most this many degrees either way: the 100 turns a view's azimuth may take.
+inline constexpr float kMaxOrbitDegrees = kMaxAzimuthDegrees;
 
 //! One key view. Unset angles or distance repeat the previous key's (the first key's: the base
 //! view's). `tf`, when set, switches the transfer function from this key's frame on.

@@ -12,6 +12,8 @@ enum class Projection { Perspective, Orthographic };
 //! A view's or a key's azimuth is at most this many degrees either way (100 turns): a float
 //! azimuth keeps a 0.004-degree step there, where 1e9 degrees would be some angle no one chose.
 inline constexpr float kMaxAzimuthDegrees = 36000.0f;
+//! Within the bound (NaN is not): the one test for --view and key files.
+inline bool validAzimuth(float degrees) { return degrees >= -kMaxAzimuthDegrees && degrees <= kMaxAzimuthDegrees; }
 
 //! Which volume axis points up on screen ("+z" by default; CT stacks often want "-z").
 enum class UpAxis { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
