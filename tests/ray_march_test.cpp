@@ -114,9 +114,10 @@ void checkAgainstScalar(MarchFunction simd) {
 }  // namespace
 
 TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with the same samples") {
-  // Both builds of it: for AVX2 alone, and for CPUs with AVX-512 VL (where this CPU has them).
+  // Every build of it: for AVX2 alone, for CPUs with AVX-512 VL, and that with 512-bit registers
+  // (where this CPU has them).
   std::vector<MarchFunction> simds;
-  for (const MarchFunction m : {avx2MarchFunction(), avx512vlMarchFunction()})
+  for (const MarchFunction m : {avx2MarchFunction(), avx512vlMarchFunction(), avx512MarchFunction()})
     if (m) simds.push_back(m);
   if (simds.empty()) {
     MESSAGE("this CPU or build has no AVX2: only the scalar march exists, nothing to compare");
@@ -126,6 +127,42 @@ TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with
     CAPTURE(marchName(simd));
     checkAgainstScalar(simd);
   }
+}
+
+namespace {
+// Stand-ins for the builds: chooseMarch only compares and returns the pointers.
+void fakeAvx2(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t&) {}
+void fakeAvx512vl(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t&) {}
+void fakeAvx512(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t&) {}
+}  // namespace
+
+TEST_CASE("the march is chosen by the CPU's vector units, and KDSWAP_SIMD narrows or widens it") {
+  const MarchBuilds amd{&fakeAvx2, &fakeAvx512vl, &fakeAvx512, true};     // 512-bit at full speed
+  const MarchBuilds intel{&fakeAvx2, &fakeAvx512vl, &fakeAvx512, false};  // AVX-512, narrower is faster
+  const MarchBuilds avx2Only{&fakeAvx2, nullptr, nullptr, false};
+  const MarchBuilds none{};
+  CHECK((chooseMarch(amd, "") == &fakeAvx512));
+  CHECK((chooseMarch(intel, "") == &fakeAvx512vl));
+  CHECK((chooseMarch(avx2Only, "") == &fakeAvx2));
+  CHECK((chooseMarch(none, "") == &marchScalar));
+  // Requests: a build where the CPU has it ...
+  CHECK((chooseMarch(amd, "avx512vl") == &fakeAvx512vl));
+  CHECK((chooseMarch(amd, "avx2") == &fakeAvx2));
+  CHECK((chooseMarch(intel, "avx512") == &fakeAvx512));
+  CHECK((chooseMarch(intel, "scalar") == &marchScalar));
+  // ... the next narrower one where it does not, and unknown text is no request.
+  CHECK((chooseMarch(avx2Only, "avx512") == &fakeAvx2));
+  CHECK((chooseMarch(avx2Only, "avx512vl") == &fakeAvx2));
+  CHECK((chooseMarch(none, "avx2") == &marchScalar));
+  CHECK((chooseMarch(amd, "avx-512") == &fakeAvx512));
+  CHECK((chooseMarch(intel, "AVX2") == &fakeAvx512vl));
+  // The real builds carry their names into reports.
+  CHECK(std::string(marchName(&marchScalar)) == "scalar");
+  if (avx512MarchFunction()) {
+    CHECK(std::string(marchName(avx512MarchFunction())) == "avx512");
+    CHECK(std::string(marchName(avx512vlMarchFunction())) == "avx2+avx512vl");
+  }
+  if (avx2MarchFunction()) CHECK(std::string(marchName(avx2MarchFunction())) == "avx2");
 }
 
 TEST_CASE("compositing eight at a time equals sample-by-sample front-to-back over, and stops at the same sample") {

@@ -50,19 +50,25 @@ void marchScalar(const MarchContext& m, const RaySegment* segments, std::size_t 
     for (std::size_t i = 0; i < count; ++i) colours[i] = marchOne<false>(m, segments[i], samples);
 }
 
+MarchFunction chooseMarch(const MarchBuilds& builds, std::string_view request) {
+  if (request == "scalar") return &marchScalar;
+  // Widest first; a request for a narrower build rules out the wider ones.
+  const bool narrower = request == "avx2" || request == "avx512vl";
+  if (!narrower && builds.avx512 && (request == "avx512" || builds.wideAtFullSpeed)) return builds.avx512;
+  if (request != "avx2" && builds.avx512vl) return builds.avx512vl;
+  return builds.avx2 ? builds.avx2 : &marchScalar;
+}
+
 MarchFunction selectedMarchFunction() {
-  static const MarchFunction chosen = [] {
-    if (scalarRequested()) return &marchScalar;
-    const MarchFunction wide = avx2OnlyRequested() ? nullptr : avx512vlMarchFunction();
-    if (wide) return wide;
-    const MarchFunction avx2 = avx2MarchFunction();
-    return avx2 ? avx2 : &marchScalar;
-  }();
+  static const MarchFunction chosen = chooseMarch(
+      MarchBuilds{avx2MarchFunction(), avx512vlMarchFunction(), avx512MarchFunction(), cpuRunsWideVectorsAtFullSpeed()},
+      simdRequest());
   return chosen;
 }
 
 const char* marchName(MarchFunction march) {
   if (march == &marchScalar) return "scalar";
+  if (march != nullptr && march == avx512MarchFunction()) return "avx512";
   if (march != nullptr && march == avx512vlMarchFunction()) return "avx2+avx512vl";
   return "avx2";
 }

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <string_view>
 
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
@@ -140,10 +141,24 @@ MarchFunction avx2MarchFunction();
 //! The same AVX2 march compiled for CPUs with AVX-512 VL (ray_march_avx512vl.cpp), or null where
 //! the CPU or build lacks it. Same operations, same bits; only the code generation differs.
 MarchFunction avx512vlMarchFunction();
-//! The fastest march the CPU runs (AVX2 compiled for AVX-512 VL, then AVX2, then scalar), unless
-//! the environment sets KDSWAP_SIMD=scalar or KDSWAP_SIMD=avx2.
+//! That build with 512-bit registers for compact voxels' interpolation (ray_march_avx512.cpp), or
+//! null where the CPU or build lacks AVX-512 VL. Same operations, same bits.
+MarchFunction avx512MarchFunction();
+
+//! The builds of the march this CPU runs (null where it lacks one), and whether it runs 512-bit
+//! vectors at full speed (cpuRunsWideVectorsAtFullSpeed).
+struct MarchBuilds {
+  MarchFunction avx2 = nullptr, avx512vl = nullptr, avx512 = nullptr;
+  bool wideAtFullSpeed = false;
+};
+//! The march to run. With no request (""), the fastest for the CPU: the 512-bit build where
+//! 512-bit vectors run at full speed, else the AVX-512 VL build, else AVX2, else scalar. A request
+//! (KDSWAP_SIMD: "scalar", "avx2", "avx512vl", "avx512") takes that build, or the next narrower
+//! one the CPU has; any other text counts as none.
+MarchFunction chooseMarch(const MarchBuilds& builds, std::string_view request);
+//! chooseMarch for this CPU and KDSWAP_SIMD, chosen once.
 MarchFunction selectedMarchFunction();
-//! "avx2+avx512vl", "avx2" or "scalar", for reports.
+//! "avx512", "avx2+avx512vl", "avx2" or "scalar", for reports.
 const char* marchName(MarchFunction march);
 
 }  // namespace kdswap

@@ -9,9 +9,9 @@
 // interpolation runs on 4 lanes per sample, as TrilinearCell does (two samples per register); with
 // compact storage each (y, z) pair of x corners is one 16-byte load of 16-bit integers, blended
 // along x in integers (exact) and then converted, as interpolateCompact does (four samples per
-// 512-bit register, two per 256-bit one). Either ends with one register per quantity; everything
-// after it runs on eight samples per instruction. The march is a template on the voxel type, so
-// each format gets its own code without a test per sample.
+// 512-bit register in the wide build, two per 256-bit one in the others). Either ends with one
+// register per quantity; everything after it runs on eight samples per instruction. The march is
+// a template on the voxel type, so each format gets its own code without a test per sample.
 #include "core/render/ray_march.h"
 
 #include <climits>
@@ -30,10 +30,16 @@ namespace {
 // ray_march_avx512vl.cpp compiles this file again for CPUs with AVX-512 VL: the same 256-bit
 // intrinsics, so the same operations and bits, but GCC may then use 32 vector registers (this
 // march spills with 16) and masked forms; no 512-bit vectors (prefer-vector-width=256), which
-// some Intel cores would pay for with a lower clock.
+// Intel cores pay for. ray_march_avx512.cpp compiles it a third time with KDSWAP_MARCH_WIDE as
+// well: compact voxels are then interpolated four samples to a 512-bit register, which AMD's
+// Zen 4 and Zen 5 run at full speed and an Intel Xeon (Sapphire Rapids class) does not.
 #if defined(KDSWAP_MARCH_AVX512VL)
 #define KDSWAP_AVX2 __attribute__((target("avx2,avx512f,avx512vl,avx512dq,avx512bw,prefer-vector-width=256")))
+#if defined(KDSWAP_MARCH_WIDE)
+#define KDSWAP_MARCH_ENTRY avx512MarchFunction
+#else
 #define KDSWAP_MARCH_ENTRY avx512vlMarchFunction
+#endif
 #define KDSWAP_MARCH_CPU cpuHasAvx512vl
 #else
 #define KDSWAP_AVX2 __attribute__((target("avx2")))
@@ -169,7 +175,7 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
   // Words (v g0 g1 g2 | v' g0' g1' g2') of a corner pair to (v v' g0 g0' g1 g1' g2 g2').
   const __m128i pairWords = _mm_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
   const std::ptrdiff_t at[4] = {0, sy, sz, sz + sy};
-#if defined(KDSWAP_MARCH_AVX512VL)
+#if defined(KDSWAP_MARCH_WIDE)
   // Four samples a register, one per 128-bit lane: samples 0-3, then 4-7. The zero-masking forms
   // with every lane set are the plain instructions; GCC 12's unmasked ones warn of an undefined
   // pass-through operand.

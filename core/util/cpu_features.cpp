@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 namespace kdswap {
 
@@ -33,20 +34,32 @@ bool cpuHasAvx512vl() {
 #endif
 }
 
-namespace {
-bool simdRequested(const char* name) {
-  const char* simd = std::getenv("KDSWAP_SIMD");
-  return simd != nullptr && std::strcmp(simd, name) == 0;
+bool cpuRunsWideVectorsAtFullSpeed() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool fast = [] {
+    __builtin_cpu_init();
+    return cpuHasAvx512vl() && __builtin_cpu_is("amd");
+  }();
+  return fast;
+#else
+  return false;
+#endif
 }
+
+const char* simdRequest() {
+  static const std::string request = [] {
+    const char* simd = std::getenv("KDSWAP_SIMD");
+    return std::string(simd != nullptr ? simd : "");
+  }();
+  return request.c_str();
+}
+
+namespace {
+bool simdRequested(const char* name) { return std::strcmp(simdRequest(), name) == 0; }
 }  // namespace
 
 bool scalarRequested() {
   static const bool requested = simdRequested("scalar");
-  return requested;
-}
-
-bool avx2OnlyRequested() {
-  static const bool requested = simdRequested("avx2");
   return requested;
 }
 
