@@ -130,10 +130,11 @@ TEST_CASE("the AVX2 ray march gives the scalar march's colours bit for bit, with
 }
 
 namespace {
-// Stand-ins for the builds: chooseMarch only compares and returns the pointers.
-void fakeAvx2(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t&) {}
-void fakeAvx512vl(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t&) {}
-void fakeAvx512(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t&) {}
+// Stand-ins for the builds: chooseMarch only compares and returns the pointers. Different bodies,
+// so no linker folds them into one address.
+void fakeAvx2(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t& s) { s += 2; }
+void fakeAvx512vl(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t& s) { s += 3; }
+void fakeAvx512(const MarchContext&, const RaySegment*, std::size_t, Rgba*, std::uint64_t& s) { s += 5; }
 }  // namespace
 
 TEST_CASE("the march is chosen by the CPU's vector units, and KDSWAP_SIMD narrows or widens it") {

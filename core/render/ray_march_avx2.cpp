@@ -121,6 +121,12 @@ KDSWAP_AVX2 inline __m256 lit(__m256 c, __m256 light, __m256 highlight) {
   return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(_mm256_mul_ps(c, light), highlight));
 }
 
+//! The floats at table[i], table[i + 1], table[j], table[j + 1]: two 8-byte loads.
+KDSWAP_AVX2 inline __m128 twoPairs(const float* table, int i, int j) {
+  return _mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(table + i)),
+                      reinterpret_cast<const __m64*>(table + j));
+}
+
 //! Entries is[j] and is[j] + 1 of the specular table for eight lanes. Each lane's two adjacent
 //! floats are one 8-byte load, its index read back from memory as lookup8 does: eight plain
 //! loads, not gathers. A gather cost 11% of the paper cell's frame on an Intel Xeon (Sapphire
@@ -129,11 +135,11 @@ KDSWAP_AVX2 inline void specularPairs(const float* table, __m256i is, __m256& s0
   alignas(32) int at[kLanes];
   _mm256_store_si256(reinterpret_cast<__m256i*>(at), is);
   asm("" : "+m"(at));
-  const auto pair = [&](int j) { return reinterpret_cast<const __m64*>(table + at[j]); };
-  const auto two = [&](int j) { return _mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), pair(j)), pair(j + 1)); };
   // low = (e0 f0 e1 f1 | e2 f2 e3 f3), high the same for lanes 4..7 (e: entry, f: the next one).
-  const __m256 low = _mm256_insertf128_ps(_mm256_castps128_ps256(two(0)), two(2), 1);
-  const __m256 high = _mm256_insertf128_ps(_mm256_castps128_ps256(two(4)), two(6), 1);
+  const __m256 low = _mm256_insertf128_ps(_mm256_castps128_ps256(twoPairs(table, at[0], at[1])),
+                                          twoPairs(table, at[2], at[3]), 1);
+  const __m256 high = _mm256_insertf128_ps(_mm256_castps128_ps256(twoPairs(table, at[4], at[5])),
+                                           twoPairs(table, at[6], at[7]), 1);
   const __m256 entries = _mm256_shuffle_ps(low, high, _MM_SHUFFLE(2, 0, 2, 0));  // e0 e1 e4 e5 | e2 e3 e6 e7
   const __m256 nexts = _mm256_shuffle_ps(low, high, _MM_SHUFFLE(3, 1, 3, 1));
   s0 = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(entries), _MM_SHUFFLE(3, 1, 2, 0)));
