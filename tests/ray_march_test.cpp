@@ -142,21 +142,35 @@ TEST_CASE("the march is chosen by the CPU's vector units, and KDSWAP_SIMD narrow
   const MarchBuilds intel{&fakeAvx2, &fakeAvx512vl, &fakeAvx512, false};  // AVX-512, narrower is faster
   const MarchBuilds avx2Only{&fakeAvx2, nullptr, nullptr, false};
   const MarchBuilds none{};
-  CHECK((chooseMarch(amd, "") == &fakeAvx512));
-  CHECK((chooseMarch(intel, "") == &fakeAvx512vl));
-  CHECK((chooseMarch(avx2Only, "") == &fakeAvx2));
-  CHECK((chooseMarch(none, "") == &marchScalar));
-  // Requests: a build where the CPU has it ...
-  CHECK((chooseMarch(amd, "avx512vl") == &fakeAvx512vl));
-  CHECK((chooseMarch(amd, "avx2") == &fakeAvx2));
-  CHECK((chooseMarch(intel, "avx512") == &fakeAvx512));
-  CHECK((chooseMarch(intel, "scalar") == &marchScalar));
-  // ... the next narrower one where it does not, and unknown text is no request.
-  CHECK((chooseMarch(avx2Only, "avx512") == &fakeAvx2));
-  CHECK((chooseMarch(avx2Only, "avx512vl") == &fakeAvx2));
-  CHECK((chooseMarch(none, "avx2") == &marchScalar));
-  CHECK((chooseMarch(amd, "avx-512") == &fakeAvx512));
-  CHECK((chooseMarch(intel, "AVX2") == &fakeAvx512vl));
+  struct Case {
+    const char* cpu;
+    const MarchBuilds& builds;
+    const char* request;
+    MarchFunction expected;
+  };
+  const Case cases[] = {
+      // No request: the fastest build for the CPU.
+      {"AMD", amd, "", &fakeAvx512},
+      {"Intel", intel, "", &fakeAvx512vl},
+      {"AVX2 only", avx2Only, "", &fakeAvx2},
+      {"no AVX2", none, "", &marchScalar},
+      // A request: that build where the CPU has it ...
+      {"AMD", amd, "avx512vl", &fakeAvx512vl},
+      {"AMD", amd, "avx2", &fakeAvx2},
+      {"Intel", intel, "avx512", &fakeAvx512},
+      {"Intel", intel, "scalar", &marchScalar},
+      // ... the next narrower one where it does not; unknown text is no request.
+      {"AVX2 only", avx2Only, "avx512", &fakeAvx2},
+      {"AVX2 only", avx2Only, "avx512vl", &fakeAvx2},
+      {"no AVX2", none, "avx2", &marchScalar},
+      {"AMD", amd, "avx-512", &fakeAvx512},
+      {"Intel", intel, "AVX2", &fakeAvx512vl},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.cpu);
+    CAPTURE(c.request);
+    CHECK((chooseMarch(c.builds, c.request) == c.expected));
+  }
   // The real builds carry their names into reports.
   CHECK(std::string(marchName(&marchScalar)) == "scalar");
   if (avx512MarchFunction()) {
