@@ -62,23 +62,34 @@ KDSWAP_AVX2 inline __m256 cornerPair(const Voxel* a, const Voxel* b, std::ptrdif
   return loadPair(&a[offset].value, &b[offset].value);
 }
 
-//! One corner's weighted voxels for a pair of samples (weights of the pair picked from eight).
-KDSWAP_AVX2 inline __m256 term(__m256 weights, __m256i pick, __m256 corners) {
-  return _mm256_mul_ps(_mm256_permutevar8x32_ps(weights, pick), corners);
+//! Lane j of each 128-bit half of v, in every lane of that half: sample j's weight in the low half,
+//! sample j + 4's in the high half. An in-lane shuffle (one cycle), not a cross-lane permute.
+template <int j>
+KDSWAP_AVX2 inline __m256 laneOfEachHalf(__m256 v) {
+  return _mm256_permute_ps(v, _MM_SHUFFLE(j, j, j, j));
 }
 
-//! Value and gradient of samples j (low half) and j + 4 (high half) at once. `w[c]` holds corner
-//! c's weight of the eight samples; `pick` selects j's in the low half and j + 4's in the high.
+//! One corner's weighted voxels for samples j and j + 4 (their weights picked from eight).
+template <int j>
+KDSWAP_AVX2 inline __m256 term(__m256 weights, __m256 corners) {
+  return _mm256_mul_ps(laneOfEachHalf<j>(weights), corners);
+}
+
+//! Value and gradient of samples j (low half) and j + 4 (high half) at once, whose floor voxels are
+//! corner[j] and corner[j + 4]. `w[c]` holds corner c's weight of the eight samples.
 //! Corners 000 100 010 110 001 101 011 111, summed in that order (as TrilinearCell).
-KDSWAP_AVX2 inline __m256 interpolatePair(const Voxel* a, const Voxel* b, std::ptrdiff_t sy, std::ptrdiff_t sz,
-                                          const __m256* w, __m256i pick) {
-  __m256 sum = _mm256_add_ps(term(w[0], pick, cornerPair(a, b, 0)), term(w[1], pick, cornerPair(a, b, 1)));
-  sum = _mm256_add_ps(sum, term(w[2], pick, cornerPair(a, b, sy)));
-  sum = _mm256_add_ps(sum, term(w[3], pick, cornerPair(a, b, sy + 1)));
-  sum = _mm256_add_ps(sum, term(w[4], pick, cornerPair(a, b, sz)));
-  sum = _mm256_add_ps(sum, term(w[5], pick, cornerPair(a, b, sz + 1)));
-  sum = _mm256_add_ps(sum, term(w[6], pick, cornerPair(a, b, sz + sy)));
-  return _mm256_add_ps(sum, term(w[7], pick, cornerPair(a, b, sz + sy + 1)));
+template <int j>
+KDSWAP_AVX2 inline __m256 interpolatePair(const Voxel* const* corner, std::ptrdiff_t sy, std::ptrdiff_t sz,
+                                          const __m256* w) {
+  const Voxel* a = corner[j];
+  const Voxel* b = corner[j + 4];
+  __m256 sum = _mm256_add_ps(term<j>(w[0], cornerPair(a, b, 0)), term<j>(w[1], cornerPair(a, b, 1)));
+  sum = _mm256_add_ps(sum, term<j>(w[2], cornerPair(a, b, sy)));
+  sum = _mm256_add_ps(sum, term<j>(w[3], cornerPair(a, b, sy + 1)));
+  sum = _mm256_add_ps(sum, term<j>(w[4], cornerPair(a, b, sz)));
+  sum = _mm256_add_ps(sum, term<j>(w[5], cornerPair(a, b, sz + 1)));
+  sum = _mm256_add_ps(sum, term<j>(w[6], cornerPair(a, b, sz + sy)));
+  return _mm256_add_ps(sum, term<j>(w[7], cornerPair(a, b, sz + sy + 1)));
 }
 
 //! Registers j = 0..3 each hold a 4-vector of lane j (low half) and of lane j + 4 (high half);
@@ -165,6 +176,23 @@ KDSWAP_AVX2 inline __m128i pairOf(const CompactVoxel* x) {
   return _mm_loadu_si128(reinterpret_cast<const __m128i*>(x));
 }
 
+//! Samples j (low half) and j + 4 (high half) of interpolateCompact8 (the 256-bit form): each (y, z)
+//! pair of x corners blended by the x weights `wx`, converted, weighted by `yz` and summed in order.
+template <int j>
+KDSWAP_AVX2 inline __m256 compactPair(const CompactVoxel* const* corner, const std::ptrdiff_t* at, __m256i wx,
+                                      const __m256* yz, __m256i shuffle) {
+  const __m256i weights = _mm256_shuffle_epi32(wx, _MM_SHUFFLE(j, j, j, j));  // in-lane, as laneOfEachHalf
+  __m256 sum = _mm256_setzero_ps();
+  for (int c = 0; c < 4; ++c) {
+    const __m256i raw =
+        _mm256_inserti128_si256(_mm256_castsi128_si256(pairOf(corner[j] + at[c])), pairOf(corner[j + 4] + at[c]), 1);
+    const __m256i blended = _mm256_madd_epi16(_mm256_shuffle_epi8(raw, shuffle), weights);
+    const __m256 term = _mm256_mul_ps(_mm256_cvtepi32_ps(blended), laneOfEachHalf<j>(yz[c]));
+    sum = c == 0 ? term : _mm256_add_ps(sum, term);
+  }
+  return sum;
+}
+
 //! interpolateCompact for eight samples: sample j's corner record at its floor is corner[j]. Both
 //! x corners of a (y, z) pair come in one 16-byte load; a byte shuffle pairs each quantity's two
 //! 16-bit words, and one multiply-add of 16-bit pairs (pmaddwd) blends them with the integer x
@@ -219,18 +247,8 @@ KDSWAP_AVX2 inline void interpolateCompact8(const CompactVoxel* const* corner, s
 #else
   // Two samples a register: j in the low half, j + 4 in the high half, as transposeHalves takes them.
   const __m256i shuffle = _mm256_broadcastsi128_si256(pairWords);
-  __m256 t[4];
-  for (int j = 0; j < 4; ++j) {
-    const __m256i spread = _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4);
-    const __m256i weights = _mm256_permutevar8x32_epi32(wx, spread);
-    for (int c = 0; c < 4; ++c) {
-      const __m256i raw =
-          _mm256_inserti128_si256(_mm256_castsi128_si256(pairOf(corner[j] + at[c])), pairOf(corner[j + 4] + at[c]), 1);
-      const __m256i blended = _mm256_madd_epi16(_mm256_shuffle_epi8(raw, shuffle), weights);
-      const __m256 term = _mm256_mul_ps(_mm256_cvtepi32_ps(blended), _mm256_permutevar8x32_ps(yz[c], spread));
-      t[j] = c == 0 ? term : _mm256_add_ps(t[j], term);
-    }
-  }
+  const __m256 t[4] = {compactPair<0>(corner, at, wx, yz, shuffle), compactPair<1>(corner, at, wx, yz, shuffle),
+                       compactPair<2>(corner, at, wx, yz, shuffle), compactPair<3>(corner, at, wx, yz, shuffle)};
   transposeHalves(t, out);
 #endif
 }
@@ -259,10 +277,8 @@ KDSWAP_AVX2 void shade8(const MarchContext& m, const Directions8& toLight, __m25
         _mm256_mul_ps(_mm256_mul_ps(gx, fy), fz), _mm256_mul_ps(_mm256_mul_ps(fx, fy), fz)};
     // Samples j and j + 4 share a register; a 4x4 transpose in each half then gives one register
     // per quantity with the samples in order.
-    __m256 t[4];
-    for (int j = 0; j < 4; ++j)
-      t[j] = interpolatePair(corner[j], corner[j + 4], sy, sz, w,
-                             _mm256_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4));
+    const __m256 t[4] = {interpolatePair<0>(corner, sy, sz, w), interpolatePair<1>(corner, sy, sz, w),
+                         interpolatePair<2>(corner, sy, sz, w), interpolatePair<3>(corner, sy, sz, w)};
     transposeHalves(t, q);
   }
   const __m256 value = q[0], gradX = q[1], gradY = q[2], gradZ = q[3];
