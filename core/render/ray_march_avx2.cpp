@@ -103,16 +103,21 @@ KDSWAP_AVX2 inline void transposeHalves(const __m256* in, __m256* out) {
   out[3] = _mm256_shuffle_ps(u1, u3, _MM_SHUFFLE(3, 2, 3, 2));
 }
 
+//! The eight lanes of `v` in `at`, for eight plain loads at those indices: through memory, where
+//! GCC would otherwise extract the lanes one by one (~26 instructions against 10). The empty asm
+//! keeps the compiler from folding the store back into lane extracts.
+KDSWAP_AVX2 inline void lanesThroughMemory(__m256i v, int (&at)[kLanes]) {
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at), v);
+  asm("" : "+m"(at));
+}
+
 //! TransferTable::lookup of eight samples at entries `index` (already clamped) and fractions
 //! `frac`: each lane's entries i and i + 1 are adjacent (the table repeats its last entry), so
 //! they are loaded as vectors and transposed, rather than gathered channel by channel.
 //! out[0..3] = r, g, b, a, each e0 + frac * (e1 - e0).
 KDSWAP_AVX2 inline void lookup8(const glm::vec4* entries, __m256i index, __m256 frac, __m256* out) {
-  // Byte offsets (16 per entry) through memory: eight plain loads, where GCC would otherwise
-  // extract the lanes one by one (~26 instructions against 10).
-  alignas(32) int at[kLanes];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(at), _mm256_slli_epi32(index, 4));
-  asm("" : "+m"(at));
+  alignas(32) int at[kLanes];  // byte offsets: 16 per entry
+  lanesThroughMemory(_mm256_slli_epi32(index, 4), at);
   const char* base = reinterpret_cast<const char*>(entries);
   __m256 first[4], second[4];
   for (int j = 0; j < 4; ++j) {
@@ -139,13 +144,12 @@ KDSWAP_AVX2 inline __m128 twoPairs(const float* table, int i, int j) {
 }
 
 //! Entries is[j] and is[j] + 1 of the specular table for eight lanes. Each lane's two adjacent
-//! floats are one 8-byte load, its index read back from memory as lookup8 does: eight plain
+//! floats are one 8-byte load at an index read back from memory (lanesThroughMemory): eight plain
 //! loads, not gathers. A gather cost 11% of the paper cell's frame on an Intel Xeon (Sapphire
 //! Rapids class), and AMD Zen 4 issues one load per gathered element anyway.
 KDSWAP_AVX2 inline void specularPairs(const float* table, __m256i is, __m256& s0, __m256& s1) {
   alignas(32) int at[kLanes];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(at), is);
-  asm("" : "+m"(at));
+  lanesThroughMemory(is, at);
   // low = (e0 f0 e1 f1 | e2 f2 e3 f3), high the same for lanes 4..7 (e: entry, f: the next one).
   const __m256 low = _mm256_insertf128_ps(_mm256_castps128_ps256(twoPairs(table, at[0], at[1])),
                                           twoPairs(table, at[2], at[3]), 1);
@@ -182,7 +186,7 @@ template <int j>
 KDSWAP_AVX2 inline __m256 compactPair(const CompactVoxel* const* corner, const std::ptrdiff_t* at, __m256i wx,
                                       const __m256* yz, __m256i shuffle) {
   const __m256i weights = _mm256_shuffle_epi32(wx, _MM_SHUFFLE(j, j, j, j));  // in-lane, as laneOfEachHalf
-  __m256 sum = _mm256_setzero_ps();
+  __m256 sum = _mm256_setzero_ps();  // replaced by the first term: the sum is term 0 + 1 + 2 + 3, in order
   for (int c = 0; c < 4; ++c) {
     const __m256i raw =
         _mm256_inserti128_si256(_mm256_castsi128_si256(pairOf(corner[j] + at[c])), pairOf(corner[j + 4] + at[c]), 1);
