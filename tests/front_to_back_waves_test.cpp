@@ -252,3 +252,36 @@ TEST_CASE("front-to-back waves: the same image bits with one, two and four worke
     }
   }
 }
+
+TEST_CASE("front-to-back waves: a node composites once its own brick is rendered, as tasks or as threads") {
+  // The waves render every brick beside the node tasks and hand each node its brick as soon as
+  // the brick's last piece is done: the node's compositing starts after that piece ends, whatever
+  // the other bricks are doing, and the frame is the same however the nodes run.
+  std::mt19937 rng(64);
+  const std::vector<View> views = test::randomViews(rng, 2);
+  for (int nodes : {2, 8, 64}) {
+    std::vector<Image> asTasks;
+    for (NodeExecution execution : {NodeExecution::Tasks, NodeExecution::Threads}) {
+      ClusterOptions options;
+      options.nodes = nodes;
+      options.execution = execution;
+      VirtualCluster cluster(*fixture().volume, options);
+      for (std::size_t v = 0; v < views.size(); ++v) {
+        const std::string what = describe(nodes, "binary-swap", views[v], 57, 45) +
+                                 (execution == NodeExecution::Tasks ? " tasks" : " threads");
+        const FrameResult frame = cluster.renderFrame(wavesRequest(views[v], 57, 45, 0.9f));
+        REQUIRE(frame.stats.perNode.size() == std::size_t(nodes));
+        for (const NodeReport& node : frame.stats.perNode) {
+          CHECK_MESSAGE(node.renderStart <= node.renderEnd, what << " node " << node.rank);
+          REQUIRE_FALSE(node.phases.empty());
+          CHECK_MESSAGE(node.renderEnd <= node.phases.front().start, what << " node " << node.rank);
+        }
+        if (execution == NodeExecution::Tasks) {
+          asTasks.push_back(frame.image);
+          continue;
+        }
+        CHECK_MESSAGE(maxAbsDifference(frame.image, asTasks[v], asTasks[v].rect()) == 0.0f, what);
+      }
+    }
+  }
+}

@@ -45,8 +45,9 @@ struct FramePlan {
   //! When set, each node adds 1 as its render step ends (before compositing): a progress display
   //! on a long frame reads it while the nodes work.
   std::atomic<int>* nodesRendered = nullptr;
-  //! Front-to-back waves: every rank's brick, already rendered nearest first (the node then only
-  //! composites it); null when each node renders its own brick as its first step.
+  //! Front-to-back waves: every rank's brick, rendered nearest first beside the nodes (a node takes
+  //! its own once the host's kBrickRenderedTag message says it is done, then composites it); null
+  //! when each node renders its own brick as its first step.
   std::vector<RenderedBrick>* waves = nullptr;
   Rect frame() const { return camera.frame(); }
 };

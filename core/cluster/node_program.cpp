@@ -199,6 +199,16 @@ RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransm
   return out;
 }
 
+namespace {
+
+//! Front-to-back waves: the node's brick, once the waves have rendered it (the host says so).
+RenderedBrick renderedInWaves(Communicator& comm, const FramePlan& plan) {
+  comm.receive(Communicator::kHost, kBrickRenderedTag);
+  return std::move((*plan.waves)[std::size_t(comm.rank())]);
+}
+
+}  // namespace
+
 NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& plan, PhaseRecord* record) {
   NodeReport report;
   report.rank = comm.rank();
@@ -213,13 +223,12 @@ NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& pl
   if (plan.bricks) {
     partial = renderPieces(node, comm, plan, report, observer);
   } else {
-    RenderedBrick rendered =
-        plan.waves ? std::move((*plan.waves)[std::size_t(comm.rank())]) : renderOwnBrick(node, plan);
+    RenderedBrick rendered = plan.waves ? renderedInWaves(comm, plan) : renderOwnBrick(node, plan);
     // Keep only the rectangle the brick's rays reached: the pixels around it are empty ("over"
     // with an empty pixel changes nothing), and with every node's partial image alive at once
     // before compositing, those margins were most of a frame's memory at large P.
     partial = trimTo(std::move(rendered.image), rendered.content);
-    if (plan.waves) report.renderStart = rendered.start;  // rendered in its wave, before this task
+    if (plan.waves) report.renderStart = rendered.start;  // rendered in its wave, while this task waited
     report.renderEnd = plan.waves ? rendered.end : nowSeconds();
     report.renderSeconds = rendered.counters.seconds;
     report.rays = rendered.counters.rays;

@@ -21,6 +21,7 @@ namespace kdswap {
 inline constexpr int kBrickTag = 10;
 inline constexpr int kTileTag = 11;
 inline constexpr int kPieceImageTag = 12;  //!< over-decomposition: a brick's image sent to its home
+inline constexpr int kBrickRenderedTag = 13;  //!< front-to-back waves: host -> node, its brick is rendered
 
 //! One node's private memory, alive across frames: the data, once distributed, is left intact.
 struct NodeState {
@@ -54,9 +55,9 @@ struct RenderedBrick {
   std::vector<int> renderedAfter;  //!< waves: the ranks in front of this brick (NodeReport::renderedAfter)
 };
 
-//! Renders the node's own brick for `plan` (with its occlusion map, if any, and `front` in
-//! front-to-back waves). The node's first step each frame; in waves the cluster calls it for every
-//! node in visibility order before the nodes composite.
+//! Renders the node's own brick for `plan` (with its occlusion map, if any). The node's first step
+//! each frame, except in front-to-back waves, where the cluster renders every brick in visibility
+//! order (renderInWaves) and the node waits for the message that its brick is done.
 RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransmittance* front = nullptr);
 
 //! The caster renderOwnBrick uses: waves make it once a frame and render the brick one screen

@@ -275,9 +275,11 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
       });
     if (occlusion) plan.occlusion = &*occlusion;
   }
+  // Waves: every brick rendered, nearest first where they overlap, by a task beside the nodes';
+  // each node composites as soon as its brick is done (bricks behind may still be rendering).
   std::vector<RenderedBrick> rendered;
-  if (waves) {  // every brick rendered, nearest first where they overlap; the nodes then only composite
-    arena_.execute([&] { rendered = renderInWaves(nodes_, plan); });
+  if (waves) {
+    rendered.resize(nodes_.size());
     plan.waves = &rendered;
   }
   BrickSchedule schedule;
@@ -314,7 +316,14 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
           throw Error("injected fault: failed while rendering");  // the frame's error names the node
         reports[std::size_t(rank)] = runNodeFrame(nodes_[std::size_t(rank)], comm, plan, result.phases.get());
       },
-      false, {});
+      waves, [&] {
+        arena_.execute([&] {
+          renderInWaves(nodes_, plan, rendered, [&](int rank) {
+            // One communicator per message: bricks finish on several threads at once.
+            InprocCommunicator(network_, Communicator::kHost).send(rank, kBrickRenderedTag, Message{});
+          });
+        });
+      });
 
   if (plan.occlusion) {
     std::uint64_t rays = 0, occluded = 0;
