@@ -19,7 +19,7 @@ source "$root/scripts/deps.sh"
 kdswap_install_missing
 
 # The suites under test: the mailbox and everything that runs a virtual cluster.
-suites=(mailbox distributed_invariant fault_injection cluster_scale soak composite_strategies)
+suites=(mailbox distributed_invariant fault_injection cluster_scale soak composite_strategies front_to_back_waves)
 
 start=$(date +%s)
 # RelWithDebInfo: optimised (TSan costs 5-15x already) with line numbers in reports; not Release,
