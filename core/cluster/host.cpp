@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cstring>
 
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+
 #include "core/cluster/node_program.h"
 #include "core/composite/image_message.h"
 #include "core/util/error.h"
@@ -12,6 +15,9 @@
 namespace kdswap {
 
 namespace {
+
+//! Rows per task when pasting tiles: 32 KiB of a 512-pixel-wide frame.
+constexpr int kRowsPerBand = 4;
 
 Message readBrick(const VolumeSource& source, const VoxelBox& owned, const VoxelStorage& storage, int piece) {
   const VolumeInfo& info = source.info();
@@ -38,6 +44,8 @@ Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<
   std::vector<unsigned char> covered(std::size_t(frame.area()), 0);
   std::int64_t coveredCount = 0;
   if (regions) regions->assign(tiles.size(), Rect{});
+  std::vector<ImageView> views;  // each tile's pixels, where the node left them
+  views.reserve(tiles.size());
   for (Message& m : tiles) {
     const std::string who = "tile from node " + std::to_string(m.source);
     if (m.header.size() != 8) throw Error(who + ": malformed header");
@@ -56,11 +64,17 @@ Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<
       std::memset(row, 1, std::size_t(region.w));
       coveredCount += region.w;
     }
-    for (int y = pixels.rect.y; y < pixels.rect.bottom(); ++y)
-      std::memcpy(&out.at(pixels.rect.x, y), pixels.row(y), sizeof(Rgba) * std::size_t(pixels.rect.w));
+    if (!pixels.empty()) views.push_back(pixels);
   }
   if (coveredCount != frame.area())
     throw Error("gather: tiles cover " + std::to_string(coveredCount) + " of " + std::to_string(frame.area()) + " pixels");
+  // Pasted in bands of rows on the calling arena's threads (the tiles are disjoint, so bands write
+  // apart): copied by one thread, they took ~4% of a 512^2 frame at P = 64 with waves.
+  tbb::parallel_for(tbb::blocked_range<int>(frame.y, frame.bottom(), kRowsPerBand), [&](const tbb::blocked_range<int>& rows) {
+    for (const ImageView& pixels : views)
+      for (int y = std::max(rows.begin(), pixels.rect.y); y < std::min(rows.end(), pixels.rect.bottom()); ++y)
+        std::memcpy(&out.at(pixels.rect.x, y), pixels.row(y), sizeof(Rgba) * std::size_t(pixels.rect.w));
+  });
   return out;
 }
 

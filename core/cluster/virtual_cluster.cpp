@@ -346,7 +346,7 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
       if (!arrived[std::size_t(r)]) missing += (missing.empty() ? "" : ", ") + std::to_string(r);
     throw Error("gather: no tile arrived from node " + missing + " (the message was lost)");
   }
-  result.image = assembleTiles(tiles, plan.frame(), &result.tiles);
+  arena_.execute([&] { result.image = assembleTiles(tiles, plan.frame(), &result.tiles); });
   const double end = nowSeconds();
 
   FrameStats& s = result.stats;
