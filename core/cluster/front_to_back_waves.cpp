@@ -23,8 +23,8 @@ namespace {
 // Screen cells of the waves' pieces, in pixels: small enough that a brick's cell rarely waits for
 // bricks in front that only touch its rectangle elsewhere, large enough that a piece's rays fill
 // the caster's batches and its set-up and scheduling stay small beside them (the phantom 256^3 at
-// 512^2, P = 64: ~330 pieces a frame). With 32-pixel cells (about four times the pieces) the paper
-// cell (turbulence 256^3, P = 512) with waves took 298 against 284 ms a frame.
+// 512^2, P = 64: ~330 pieces a frame). With 32-pixel cells (~830 pieces there) the paper cell
+// (turbulence 256^3, P = 512) with waves took 298 against 284 ms a frame.
 constexpr int kWaveCell = 64;
 
 //! One brick's state shared by its pieces: its caster and image are made by the first piece to
