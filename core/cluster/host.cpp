@@ -70,11 +70,12 @@ Image assembleTiles(std::vector<Message>& tiles, const Rect& frame, std::vector<
     throw Error("gather: tiles cover " + std::to_string(coveredCount) + " of " + std::to_string(frame.area()) + " pixels");
   // Pasted in bands of rows on the calling arena's threads (the tiles are disjoint, so bands write
   // apart): copied by one thread, they took ~4% of a 512^2 frame at P = 64 with waves.
-  tbb::parallel_for(tbb::blocked_range<int>(frame.y, frame.bottom(), kRowsPerBand), [&](const tbb::blocked_range<int>& rows) {
+  const auto paste = [&](const tbb::blocked_range<int>& rows) {
     for (const ImageView& pixels : views)
       for (int y = std::max(rows.begin(), pixels.rect.y); y < std::min(rows.end(), pixels.rect.bottom()); ++y)
         std::memcpy(&out.at(pixels.rect.x, y), pixels.row(y), sizeof(Rgba) * std::size_t(pixels.rect.w));
-  });
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(frame.y, frame.bottom(), kRowsPerBand), paste);
   return out;
 }
 
