@@ -38,7 +38,7 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
   const glm::ivec3 cells = emptySpace.cellCount();
   const glm::ivec3 size(groupSize(cells.x), groupSize(cells.y), groupSize(cells.z));
   const glm::ivec3 groupShift(std::countr_zero(unsigned(size.x)), std::countr_zero(unsigned(size.y)),
-                         std::countr_zero(unsigned(size.z)));
+                              std::countr_zero(unsigned(size.z)));
   const glm::ivec3 groups = (cells + size - 1) / size;
   std::vector<std::uint8_t> visible(std::size_t(groups.x) * std::size_t(groups.y) * std::size_t(groups.z), 0);
   const auto groupIndex = [&](int gx, int gy, int gz) {
