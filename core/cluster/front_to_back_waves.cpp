@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <mutex>
 
@@ -37,8 +38,8 @@ struct BrickInWaves {
   std::mutex summing;  //!< guards the rest (pieces of a brick finish on different threads)
   RenderCounters counters;
   Rect content;  //!< its pixels with opacity above 0
-  bool started = false;
-  double start = 0.0, end = 0.0;  //!< its first piece's start, its last one's end
+  //! Its first piece's start and its last one's end (each brick with pieces has one at least).
+  double start = std::numeric_limits<double>::infinity(), end = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace
@@ -97,9 +98,8 @@ void renderInWaves(std::vector<NodeState>& nodes, const FramePlan& plan, std::ve
     const double end = nowSeconds();
     {
       std::lock_guard<std::mutex> lock(brick.summing);
-      brick.start = brick.started ? std::min(brick.start, start) : start;
-      brick.end = brick.started ? std::max(brick.end, end) : end;
-      brick.started = true;
+      brick.start = std::min(brick.start, start);
+      brick.end = std::max(brick.end, end);
       brick.counters += counters;
       brick.content = brick.content.unite(content);
     }

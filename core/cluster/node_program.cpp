@@ -180,6 +180,12 @@ Image renderPieces(NodeState& node, Communicator& comm, const FramePlan& plan, N
   return partial;
 }
 
+//! Front-to-back waves: the node's brick, once the waves have rendered it (the host says so).
+RenderedBrick renderedInWaves(Communicator& comm, const FramePlan& plan) {
+  comm.receive(Communicator::kHost, kBrickRenderedTag);
+  return std::move((*plan.waves)[std::size_t(comm.rank())]);
+}
+
 }  // namespace
 
 Rect ownBrickScreenRect(NodeState& node, const FramePlan& plan) {
@@ -198,16 +204,6 @@ RenderedBrick renderOwnBrick(NodeState& node, const FramePlan& plan, FrontTransm
   out.end = nowSeconds();
   return out;
 }
-
-namespace {
-
-//! Front-to-back waves: the node's brick, once the waves have rendered it (the host says so).
-RenderedBrick renderedInWaves(Communicator& comm, const FramePlan& plan) {
-  comm.receive(Communicator::kHost, kBrickRenderedTag);
-  return std::move((*plan.waves)[std::size_t(comm.rank())]);
-}
-
-}  // namespace
 
 NodeReport runNodeFrame(NodeState& node, Communicator& comm, const FramePlan& plan, PhaseRecord* record) {
   NodeReport report;
