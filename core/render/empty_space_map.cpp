@@ -40,7 +40,8 @@ std::vector<std::uint8_t> EmptySpaceMap::chessboardDistance(std::vector<std::uin
   return d;
 }
 
-EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, float scale, float bias, bool enabled)
+EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, float scale, float bias, bool enabled,
+                             bool uniformCells)
     : cellCount_(brick.cellCount()) {
   if (brick.empty()) return;
   const CellRangeCodes& ranges = brick.cellRanges();
@@ -67,6 +68,13 @@ EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, flo
   visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << shift), glm::vec3(brick.owned().hi));
   allVisible_ = std::find(invisible.begin(), invisible.end(), std::uint8_t(1)) == invisible.end();
   reach_ = chessboardDistance(std::move(invisible), n);
+  const std::vector<std::uint8_t>& uniform = brick.uniformCells();
+  marchCodes_.resize(reach_.size() + kReachPadding, 0);
+  for (std::size_t i = 0; i < reach_.size(); ++i) {
+    const bool uniformVisible = uniformCells && reach_[i] == 0 && uniform[i] != 0;
+    marchCodes_[i] = uniformVisible ? kUniformBit : std::min(reach_[i], kReachMask);
+    anyUniform_ = anyUniform_ || uniformVisible;
+  }
   reach_.resize(reach_.size() + kReachPadding, 0);
 }
 

@@ -19,8 +19,10 @@ namespace kdswap {
 class EmptySpaceMap {
  public:
   //! Normalised scalar = value * scale + bias. With `enabled` false nothing is skipped (the
-  //! reference for tests: every owned sample is taken).
-  EmptySpaceMap(const Brick& brick, const TransferTable& table, float scale, float bias, bool enabled = true);
+  //! reference for tests: every owned sample is taken); with `uniformCells` false no cell is
+  //! marked uniform (the reference for tests: every sample is interpolated).
+  EmptySpaceMap(const Brick& brick, const TransferTable& table, float scale, float bias, bool enabled = true,
+                bool uniformCells = true);
 
   //! 0 when a sample in the cell can be visible. Otherwise n >= 1: every cell within n - 1 of this
   //! one along each axis (a cube of 2n - 1 cells) is invisible, as far as it lies in the brick.
@@ -28,6 +30,13 @@ class EmptySpaceMap {
   //! All cells' reach, x fastest, followed by kReachPadding zeros (a SIMD gather reads 4 bytes).
   const std::uint8_t* reachData() const { return reach_.data(); }
   static constexpr std::size_t kReachPadding = 3;
+  //! The march's codes, one byte a cell (x fastest, padded as reachData): bits 0-6 the reach
+  //! (capped at 127: a smaller cube of invisible cells is still invisible), bit 7 set on visible
+  //! cells the brick marks uniform (Brick::uniformCells), whose samples take the cell's record.
+  const std::uint8_t* marchCodes() const { return marchCodes_.data(); }
+  static constexpr std::uint8_t kUniformBit = 0x80, kReachMask = 0x7F;
+  //! Some visible cell is uniform (some code has kUniformBit).
+  bool anyUniform() const { return anyUniform_; }
   const glm::ivec3& cellCount() const { return cellCount_; }
   std::size_t cellIndex(const glm::ivec3& cell) const {  //!< cell relative to the brick's first
     return (std::size_t(cell.z) * cellCount_.y + cell.y) * cellCount_.x + cell.x;
@@ -48,9 +57,11 @@ class EmptySpaceMap {
  private:
   glm::ivec3 cellCount_{0};
   std::vector<std::uint8_t> reach_;
+  std::vector<std::uint8_t> marchCodes_;
   glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
   bool anyVisible_ = false;
   bool allVisible_ = false;
+  bool anyUniform_ = false;
 };
 
 }  // namespace kdswap

@@ -19,14 +19,18 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
     const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));  // p >= 0: truncation is floor
     const glm::ivec3 c = (floor >> m.cellShift) - m.cellLo;
     const std::size_t cell = m.cellIndex(c);
-    if (const int reach = m.reach[cell]) {
+    const int code = m.reach[cell];
+    if (const int reach = code & EmptySpaceMap::kReachMask) {
       if (cell == lastJumpedCell) continue;  // landed just short of the exit: step on
       lastJumpedCell = cell;
       k = std::max(k, s.resumeAfterEmpty(m, c, reach));
       continue;
     }
-    group[waiting++] = compact ? shadeCompactSample(m.shading, s.toLight, m.voxels, p, floor)
-                               : shadeSample(m.shading, s.toLight, m.voxels, p, floor);
+    if (code & EmptySpaceMap::kUniformBit)  // the cell's record: what interpolation gives, to rounding
+      group[waiting++] = shadeInterpolated(m.shading, s.toLight, uniformRecord(m.voxels, floor));
+    else
+      group[waiting++] = compact ? shadeCompactSample(m.shading, s.toLight, m.voxels, p, floor)
+                                 : shadeSample(m.shading, s.toLight, m.voxels, p, floor);
     if (waiting < FrontToBack::kGroup) continue;
     const bool done = result.addEight(group, waiting, stop, taken);
     samples += std::uint64_t(taken);

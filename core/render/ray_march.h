@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/image/rgba.h"
+#include "core/render/empty_space_map.h"
 #include "core/render/sample_shader.h"
 #include "core/render/trilinear.h"
 #include "core/volume/brick.h"
@@ -26,10 +27,13 @@ struct MarchContext {
   ShadingParameters shading;
   VoxelAddressing voxels;
   glm::ivec3 storedLo{0};           //!< first kept voxel: voxels.data[local index] is the voxel
-  const std::uint8_t* reach = nullptr;  //!< EmptySpaceMap::reachData(), padded for 4-byte gathers
+  //! EmptySpaceMap::marchCodes(), padded for 4-byte gathers: per cell the reach (kReachMask bits)
+  //! and whether the cell is uniform (kUniformBit: its samples take its record, uniformRecord).
+  const std::uint8_t* reach = nullptr;
   glm::ivec3 cellLo{0}, cellCount{0};
   int cellShift = 2;                //!< Brick::cellShift(): cells of 2^cellShift voxels a side
   bool allVisible = false;          //!< every reach is 0 (EmptySpaceMap::allVisible): the march may skip the map
+  bool anyUniform = false;          //!< some code has kUniformBit (EmptySpaceMap::anyUniform): the map must be read
   glm::vec3 lo{0.0f}, hi{0.0f};     //!< owned box [lo, hi), voxel coordinates
   //! Early ray termination: the ray stops once its transmittance (1 - opacity) is at most this,
   //! 1 - the termination opacity (0 with termination off: only an opaque sample ends the ray).

@@ -100,4 +100,18 @@ inline TrilinearCell::Lanes interpolateCompact(const VoxelAddressing& at, const 
   return sum;
 }
 
+//! Value and gradient of a sample in a uniform cell (Brick::uniformCells): the record at its floor,
+//! as interpolation would give them up to rounding (stored units for compact storage, as
+//! interpolateCompact). Lane 0 the value, lanes 1-3 the gradient.
+inline TrilinearCell::Lanes recordOf(const CompactVoxel& v) {
+  return TrilinearCell::Lanes{float(v.value), float(v.gradient[0]), float(v.gradient[1]), float(v.gradient[2])};
+}
+inline TrilinearCell::Lanes recordOf(const Voxel& v) {
+  return TrilinearCell::Lanes{v.value, v.gradient.x, v.gradient.y, v.gradient.z};
+}
+inline TrilinearCell::Lanes uniformRecord(const VoxelAddressing& at, const glm::ivec3& floor) {
+  const std::ptrdiff_t i = at.origin + floor.z * at.sz + floor.y * at.sy + floor.x;
+  return at.compact ? recordOf(at.compact[i]) : recordOf(at.data[i]);
+}
+
 }  // namespace kdswap

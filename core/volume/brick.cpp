@@ -4,6 +4,7 @@
 #include "core/volume/brick.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
 #include <glm/common.hpp>
@@ -115,6 +116,30 @@ void Brick::buildCells() {
                                 glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
   widenCellRanges(cellShift_, cellLo_, cellCount_, ranges);
   cellRanges_ = CellRangeCodes(ranges);
+  // Uniform cells: only those whose value range is one value can be; then every touched record
+  // (value and gradient) must equal the first, byte for byte (-0 and +0 differ: the safe side).
+  uniformCells_.assign(ranges.size(), 0);
+  const bool compact = storage_.compactFormat();
+  for (int cz = 0; cz < cellCount_.z; ++cz)
+    for (int cy = 0; cy < cellCount_.y; ++cy)
+      for (int cx = 0; cx < cellCount_.x; ++cx) {
+        const std::size_t i = (std::size_t(cz) * cellCount_.y + cy) * cellCount_.x + cx;
+        if (ranges[i].x != ranges[i].y) continue;
+        // The samples with floor in the cell (and the owned box) touch voxels floor .. floor + 1.
+        const glm::ivec3 c = glm::ivec3(cx, cy, cz) + cellLo_;
+        const glm::ivec3 lo = glm::max(c << cellShift_, owned_.lo);
+        const glm::ivec3 hi = glm::min((c + 1) << cellShift_, owned_.hi);
+        const std::size_t first = keptIndex(lo.x, lo.y, lo.z);
+        bool same = true;
+        for (int z = lo.z; z <= hi.z && same; ++z)
+          for (int y = lo.y; y <= hi.y && same; ++y)
+            for (int x = lo.x; x <= hi.x && same; ++x) {
+              const std::size_t k = keptIndex(x, y, z);
+              same = compact ? std::memcmp(&compact_[k], &compact_[first], sizeof(CompactVoxel)) == 0
+                             : std::memcmp(&voxels_[k], &voxels_[first], sizeof(Voxel)) == 0;
+            }
+        uniformCells_[i] = same ? 1 : 0;
+      }
 }
 
 void Brick::widenCellRanges(int shift, const glm::ivec3& cellLo, const glm::ivec3& cellCount,

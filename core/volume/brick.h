@@ -82,7 +82,7 @@ class Brick {
   //! Bytes of this node's private memory held by the brick.
   std::uint64_t bytes() const {
     return voxels_.size() * sizeof(Voxel) + compact_.size() * sizeof(CompactVoxel) + shell_.size() * sizeof(float) +
-           cellRanges_.bytes();
+           cellRanges_.bytes() + uniformCells_.size();
   }
 
   //! Macro cells for empty-space skipping: cell c covers samples whose floor lies in
@@ -99,6 +99,12 @@ class Brick {
   const glm::ivec3& cellLo() const { return cellLo_; }      //!< first cell index per axis
   const glm::ivec3& cellCount() const { return cellCount_; }
   const CellRangeCodes& cellRanges() const { return cellRanges_; }
+  //! Per macro cell (x fastest, as cellRanges): 1 where every voxel a sample in the cell touches
+  //! holds the same record (value and gradient, byte for byte), else 0. A sample there takes that
+  //! record as its value and gradient: what interpolating eight equal corners gives, up to
+  //! rounding, without loading them. Piecewise-constant data (phantoms, label volumes) are mostly
+  //! such cells; scans with noise have almost none.
+  const std::vector<std::uint8_t>& uniformCells() const { return uniformCells_; }
   //! Widens `ranges` (cells of 2^shift voxels, first cell `cellLo`, `cellCount` per axis, x
   //! fastest) by the value of every voxel this brick's samples touch, each in the cells of the
   //! samples that touch it. The brick's own macro cells are built this way, and so is the
@@ -121,6 +127,7 @@ class Brick {
   int cellShift_ = 2;
   glm::ivec3 cellLo_{0}, cellCount_{0};
   CellRangeCodes cellRanges_;  //!< per macro cell, x fastest
+  std::vector<std::uint8_t> uniformCells_;  //!< per macro cell: uniformCells()
 
   void buildCells();
   std::size_t keptIndex(int x, int y, int z) const {
