@@ -10,13 +10,15 @@
 // compact storage each (y, z) pair of x corners is one 16-byte load of 16-bit integers, blended
 // along x in integers (exact) and then converted, as interpolateCompact does (four samples per
 // 512-bit register in the wide build, two per 256-bit one in the others). Either ends with one
-// register per quantity; everything after it runs on eight samples per instruction. The march is
-// a template on the voxel type, so each format gets its own code without a test per sample.
+// register per quantity; everything after it runs on eight samples per instruction. Samples in
+// uniform cells (Brick::uniformCells) take their floor voxel's record instead, as the scalar march
+// does (uniformRecord), and eight of one ray with one record are shaded once. The march is a
+// template on the voxel type, so each format gets its own code without a test per sample.
 #include "core/render/ray_march.h"
 
 #include <climits>
-#include <cstring>
 #include <cstddef>
+#include <cstring>
 #include <type_traits>
 
 #include "core/util/cpu_features.h"
