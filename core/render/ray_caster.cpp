@@ -127,7 +127,7 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   shading.ambient = settings.ambient, shading.diffuse = settings.diffuse, shading.specular = settings.specular;
   shading.specularTable = specular_->data();
   march_.storedLo = brick.stored().lo;
-  march_.reach = emptySpace_->marchCodes();
+  march_.cellCodes = emptySpace_->marchCodes();
   march_.allVisible = emptySpace_->allVisible();
   march_.anyUniform = emptySpace_->anyUniform();
   march_.cellLo = brick.cellLo();

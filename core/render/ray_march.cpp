@@ -19,7 +19,7 @@ Rgba marchOne(const MarchContext& m, const RaySegment& s, std::uint64_t& samples
     const glm::ivec3 floor(int(p.x), int(p.y), int(p.z));  // p >= 0: truncation is floor
     const glm::ivec3 c = (floor >> m.cellShift) - m.cellLo;
     const std::size_t cell = m.cellIndex(c);
-    const int code = m.reach[cell];
+    const int code = m.cellCodes[cell];
     if (const int reach = code & EmptySpaceMap::kReachMask) {
       if (cell == lastJumpedCell) continue;  // landed just short of the exit: step on
       lastJumpedCell = cell;

@@ -29,7 +29,7 @@ struct MarchContext {
   glm::ivec3 storedLo{0};           //!< first kept voxel: voxels.data[local index] is the voxel
   //! EmptySpaceMap::marchCodes(), padded for 4-byte gathers: per cell the reach (kReachMask bits)
   //! and whether the cell is uniform (kUniformBit: its samples take its record, uniformRecord).
-  const std::uint8_t* reach = nullptr;
+  const std::uint8_t* cellCodes = nullptr;
   glm::ivec3 cellLo{0}, cellCount{0};
   int cellShift = 2;                //!< Brick::cellShift(): cells of 2^cellShift voxels a side
   bool allVisible = false;          //!< every reach is 0 (EmptySpaceMap::allVisible): the march may skip the map

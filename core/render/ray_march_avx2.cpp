@@ -443,7 +443,7 @@ KDSWAP_AVX2 inline __m256i cellAxis(__m256i voxel, __m128i shift, __m256i cellLo
   return _mm256_sub_epi32(_mm256_sra_epi32(voxel, shift), cellLo);
 }
 
-//! The march codes (MarchContext::reach) at relative cells (cx, cy, cz); lanes outside `lanes` read
+//! The march codes (MarchContext::cellCodes) at relative cells (cx, cy, cz); lanes outside `lanes` read
 //! cell 0's.
 KDSWAP_AVX2 __attribute__((always_inline)) inline __m256i codeAt(const BrickConstants& bc, const std::uint8_t* codes,
                                                                  __m256i cx, __m256i cy, __m256i cz, __m256i lanes) {
@@ -459,7 +459,7 @@ KDSWAP_AVX2 inline __m256i reachOf(__m256i codes) {
 
 template <bool kAllVisible, bool kUniform>
 KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConstants& bc, const RayLanes& r,
-                                                               const std::uint8_t* reachMap, long k, long last, Group& g) {
+                                                               const std::uint8_t* codeMap, long k, long last, Group& g) {
   g.n = int(std::min<long>(kLanes, last - k + 1));
   // Points k .. k + 7 exactly as RaySegment::point computes them (k + j fits an int: it is a
   // sample index along one ray).
@@ -476,7 +476,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void groupAt(const BrickConsta
     g.visible = (1 << g.n) - 1;
   } else {
     // Lanes past the segment look at cell 0.
-    const __m256i codes = codeAt(bc, reachMap, g.cx, g.cy, g.cz, _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane));
+    const __m256i codes = codeAt(bc, codeMap, g.cx, g.cy, g.cz, _mm256_cmpgt_epi32(_mm256_set1_epi32(g.n), bc.lane));
     g.reach = reachOf(codes);
     if constexpr (kUniform) g.uniform = _mm256_cmpgt_epi32(codes, _mm256_set1_epi32(EmptySpaceMap::kReachMask));
     g.visible =
@@ -823,7 +823,7 @@ class LeadingHops {
     const __m256i cx = cellAxis(_mm256_cvttps_epi32(px), bc.cellShift, bc.cellLoX);
     const __m256i cy = cellAxis(_mm256_cvttps_epi32(py), bc.cellShift, bc.cellLoY);
     const __m256i cz = cellAxis(_mm256_cvttps_epi32(pz), bc.cellShift, bc.cellLoZ);
-    const __m256i reach = reachOf(codeAt(bc, m.reach, cx, cy, cz, active_));  // finished lanes look at cell 0
+    const __m256i reach = reachOf(codeAt(bc, m.cellCodes, cx, cy, cz, active_));  // finished lanes look at cell 0
     const __m256i empty = _mm256_andnot_si256(_mm256_cmpeq_epi32(reach, _mm256_setzero_si256()), active_);
     if (_mm256_testz_si256(empty, empty)) {
       active_ = empty;
@@ -916,7 +916,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
   UniformShade same;  // the ray's last uniform shading
   long k = first;
   Group g;
-  if (k <= s.last) groupAt<kAllVisible, kUniform>(bc, r, m.reach, k, s.last, g);
+  if (k <= s.last) groupAt<kAllVisible, kUniform>(bc, r, m.cellCodes, k, s.last, g);
   while (k <= s.last) {
     // Where the ray goes on: past the group, or, when it ends in empty space, past the farthest
     // empty cube its invisible samples lie in. The next group's test starts before this group's
@@ -925,7 +925,7 @@ KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchConte
     const int full = (1 << g.n) - 1;
     if (!(g.visible >> (g.n - 1) & 1)) kNext = std::max(kNext, farthestResume(bc, s, g, ~g.visible & full) + 1);
     Group next;
-    if (kNext <= s.last) groupAt<kAllVisible, kUniform>(bc, r, m.reach, kNext, s.last, next);
+    if (kNext <= s.last) groupAt<kAllVisible, kUniform>(bc, r, m.cellCodes, kNext, s.last, next);
 
     if (g.visible == 0xFF && waiting.size == 0) {  // dense data: eight in a row, nothing to pack
       if (shadeAndComposite(m, s, voxelsOf<VoxelT>(m), g.px, g.py, g.pz, g.offset, g.uniform, &same, result, samples))
