@@ -219,9 +219,10 @@ TEST_CASE("compositing eight at a time equals sample-by-sample front-to-back ove
     CAPTURE(trial);
     CHECK(done == expectedDone);
     CHECK(taken == expectedTaken);
-    CHECK(std::fabs(eight.r - r) < 1e-6);
-    CHECK(std::fabs(eight.g - g) < 1e-6);
-    CHECK(std::fabs(eight.b - b) < 1e-6);
+    const Rgba colour = eight.rgba();
+    CHECK(std::fabs(colour.r - r) < 1e-6);
+    CHECK(std::fabs(colour.g - g) < 1e-6);
+    CHECK(std::fabs(colour.b - b) < 1e-6);
     CHECK(std::fabs(eight.transmittance - t) < 1e-6);
     stoppedGroups += done;
   }

@@ -74,14 +74,17 @@ struct RaySegment {
 };
 
 //! Front-to-back "over" of shaded samples, in lattice order, eight at a time. It carries the
-//! transmittance T = prod(1 - a) rather than the opacity. Within a group of eight the products and
-//! sums are formed as trees, not one sample after another, so the SIMD march does a group in a few
-//! vector operations instead of a serial chain of eight; addEight is that arithmetic written out
-//! lane by lane, which the SIMD march must match bit for bit. Grouping depends on which samples are
-//! taken, so images with and without empty-space skipping agree to rounding, not to the bit.
+//! transmittance T = prod(1 - a) rather than the opacity. Within a group of eight the products are
+//! formed as trees, not one sample after another, and each of the eight lanes keeps its own sum of
+//! weighted colours, added across lanes once, when the colour is read: so the SIMD march does a
+//! group in a few vector operations, with no serial chain of eight and no horizontal sums per
+//! group. addEight is that arithmetic written out lane by lane, which the SIMD march must match
+//! bit for bit. Grouping depends on which samples are taken, so images with and without
+//! empty-space skipping agree to rounding, not to the bit.
 struct FrontToBack {
   static constexpr int kGroup = 8;
-  float r = 0.0f, g = 0.0f, b = 0.0f, transmittance = 1.0f;
+  float r[kGroup] = {}, g[kGroup] = {}, b[kGroup] = {};  //!< per lane: the sum over groups of weight x colour
+  float transmittance = 1.0f;
 
   //! Adds samples s[0 .. n-1] (n <= 8, the rest ignored). True once the ray is opaque enough to
   //! stop (early ray termination); `taken` is then the samples up to the one that stopped it,
@@ -111,18 +114,16 @@ struct FrontToBack {
         done = true;
         break;
       }
-    float wr[kGroup], wg[kGroup], wb[kGroup];
     for (int j = 0; j < kGroup; ++j) {
       const float w = j > last && done ? 0.0f : (transmittance * (j >= 1 ? y[j - 1] : 1.0f)) * a[j];
       const bool inGroup = j < n;  // samples past n may be unset: their weight is 0, their colour too
-      wr[j] = w * (inGroup ? s[j].r : 0.0f), wg[j] = w * (inGroup ? s[j].g : 0.0f), wb[j] = w * (inGroup ? s[j].b : 0.0f);
+      r[j] += w * (inGroup ? s[j].r : 0.0f), g[j] += w * (inGroup ? s[j].g : 0.0f), b[j] += w * (inGroup ? s[j].b : 0.0f);
     }
-    r += treeSum(wr), g += treeSum(wg), b += treeSum(wb);
     transmittance = transmittance * y[last];
     taken = last + 1;
     return done;
   }
-  Rgba rgba() const { return Rgba{r, g, b, 1.0f - transmittance}; }
+  Rgba rgba() const { return Rgba{treeSum(r), treeSum(g), treeSum(b), 1.0f - transmittance}; }
 
   //! (v0 + v4) + (v2 + v6), plus (v1 + v5) + (v3 + v7): the order of a 256-bit horizontal add.
   static float treeSum(const float* v) {

@@ -559,6 +559,21 @@ KDSWAP_AVX2 inline float horizontalSum(__m256 v) {
   return _mm_cvtss_f32(_mm_add_ss(h, _mm_shuffle_ps(h, h, 1)));
 }
 
+//! FrontToBack in registers: each lane's sums of weighted colours, and the transmittance.
+struct Accumulated8 {
+  __m256 r, g, b;
+  float transmittance;
+};
+
+KDSWAP_AVX2 inline Accumulated8 nothingYet() {
+  return Accumulated8{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(), 1.0f};
+}
+
+//! FrontToBack::rgba: the lanes' sums added across lanes.
+KDSWAP_AVX2 inline Rgba rgbaOf(const Accumulated8& a) {
+  return Rgba{horizontalSum(a.r), horizontalSum(a.g), horizontalSum(a.b), 1.0f - a.transmittance};
+}
+
 //! Lane j takes lane `from[j]` of v; lanes in `ones` (a blend mask) take 1.
 template <int ones>
 KDSWAP_AVX2 inline __m256 shifted(__m256 v, __m256i from) {
@@ -567,7 +582,7 @@ KDSWAP_AVX2 inline __m256 shifted(__m256 v, __m256i from) {
 
 //! FrontToBack::addEight on the first n shaded samples, in lanes: the same operations, so the
 //! same bits; adds the samples taken to `samples`.
-KDSWAP_AVX2 inline bool compositeEight(FrontToBack& result, const Shaded8& s, int n, float stopTransmittance,
+KDSWAP_AVX2 inline bool compositeEight(Accumulated8& result, const Shaded8& s, int n, float stopTransmittance,
                                        std::uint64_t& samples) {
   const int inGroup = (1 << n) - 1;
   if ((s.contributing & inGroup) == 0) {  // nothing visible: no change, no stop
@@ -596,9 +611,9 @@ KDSWAP_AVX2 inline bool compositeEight(FrontToBack& result, const Shaded8& s, in
     last = __builtin_ctz(unsigned(stops));
     w = _mm256_and_ps(w, _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(last + 1), lane)));
   }
-  result.r += horizontalSum(_mm256_mul_ps(w, _mm256_load_ps(s.r)));
-  result.g += horizontalSum(_mm256_mul_ps(w, _mm256_load_ps(s.g)));
-  result.b += horizontalSum(_mm256_mul_ps(w, _mm256_load_ps(s.b)));
+  result.r = _mm256_add_ps(result.r, _mm256_mul_ps(w, _mm256_load_ps(s.r)));
+  result.g = _mm256_add_ps(result.g, _mm256_mul_ps(w, _mm256_load_ps(s.g)));
+  result.b = _mm256_add_ps(result.b, _mm256_mul_ps(w, _mm256_load_ps(s.b)));
   result.transmittance = _mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(inclusive, _mm256_set1_epi32(last))));
   samples += std::uint64_t(last + 1);
   return stops != 0;
@@ -625,7 +640,7 @@ KDSWAP_AVX2 inline void cornersOf(const VoxelT* data, __m256i offset, const Voxe
 template <typename VoxelT>
 KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegment& s, const VoxelT* data, __m256 x,
                                           __m256 y, __m256 z, __m256i offset, __m256i uniform, UniformShade* ray,
-                                          FrontToBack& result, std::uint64_t& samples) {
+                                          Accumulated8& result, std::uint64_t& samples) {
   const VoxelT* corner[kLanes];
   cornersOf(data, offset, corner);
   Shaded8 shaded;
@@ -636,7 +651,7 @@ KDSWAP_AVX2 inline bool shadeAndComposite(const MarchContext& m, const RaySegmen
 //! Where a ray's march stopped: done (early termination, or no samples left), or with its last
 //! 1..7 visible samples still to shade and composite.
 struct RayTail {
-  FrontToBack result;
+  Accumulated8 result;
   __m256 x, y, z;
   __m256i offset, uniform;
   int size = 0;  //!< samples waiting in lanes 0 .. size - 1; 0 when the ray is done
@@ -695,7 +710,7 @@ class TailPacker {
         _mm256_store_ps(own.b, _mm256_permutevar8x32_ps(_mm256_load_ps(shaded.b), from));
       }
       compositeEight(entry.result, own, entry.n, entry.stop, samples_);
-      colours_[entry.ray] = entry.result.rgba();
+      colours_[entry.ray] = rgbaOf(entry.result);
     }
     size_ = 0, count_ = 0;
     uniform_ = _mm256_setzero_si256();
@@ -704,7 +719,7 @@ class TailPacker {
  private:
   struct Entry {
     std::size_t ray;
-    FrontToBack result;
+    Accumulated8 result;
     int start, n;
     float stop;
   };
@@ -905,7 +920,8 @@ template <typename VoxelT, bool kAllVisible, bool kUniform>
 KDSWAP_AVX2 __attribute__((always_inline)) inline void marchRay(const MarchContext& m, const BrickConstants& bc,
                                                                 const RaySegment& s, long first, std::uint64_t& samples,
                                                                 RayTail& tail) {
-  FrontToBack& result = tail.result;
+  Accumulated8& result = tail.result;
+  result = nothingYet();
   tail.size = 0;
   const RayLanes r{_mm256_set1_ps(s.origin.x),    _mm256_set1_ps(s.origin.y),    _mm256_set1_ps(s.origin.z),
                    _mm256_set1_ps(s.direction.x), _mm256_set1_ps(s.direction.y), _mm256_set1_ps(s.direction.z),
@@ -987,7 +1003,7 @@ KDSWAP_AVX2 void marchBatch(const MarchContext& m, const RaySegment* segments, s
     RayTail tail;
     marchRay<VoxelT, kAllVisible, kUniform>(m, constants, segments[i], first[i % (kLanes * kLanes)], taken, tail);
     if (tail.size == 0)
-      colours[i] = tail.result.rgba();
+      colours[i] = rgbaOf(tail.result);
     else
       tails.add(i, tail, segments[i].toLight, segments[i].stopFor(m));
   }
