@@ -156,12 +156,14 @@ TEST_CASE("a brick is marked all visible exactly when no cell of its map is empt
   }
 }
 
-TEST_CASE("empty-space cells are 2^3 voxels for volumes up to 2^23 voxels and 4^3 above, on every brick") {
+TEST_CASE("empty-space cells are 2^3 voxels for volumes up to 2^27 voxels and 4^3 above, on every brick") {
   CHECK(Brick::cellShiftFor(glm::ivec3(128)) == 1);
   CHECK(Brick::cellShiftFor(glm::ivec3(64, 64, 93)) == 1);
-  CHECK(Brick::cellShiftFor(glm::ivec3(256, 256, 128)) == 1);  // exactly 2^23
-  CHECK(Brick::cellShiftFor(glm::ivec3(256, 256, 129)) == 2);
-  CHECK(Brick::cellShiftFor(glm::ivec3(256)) == 2);
+  CHECK(Brick::cellShiftFor(glm::ivec3(256)) == 1);
+  CHECK(Brick::cellShiftFor(glm::ivec3(302)) == 1);
+  CHECK(Brick::cellShiftFor(glm::ivec3(512)) == 1);  // exactly 2^27
+  CHECK(Brick::cellShiftFor(glm::ivec3(512, 512, 513)) == 2);
+  CHECK(Brick::cellShiftFor(glm::ivec3(1024)) == 2);
   // A brick follows its volume's size, not its own, so all of a volume's bricks agree.
   auto volume = openDataset("phantom:40");
   const Brick brick = test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(8)});
