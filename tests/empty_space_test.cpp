@@ -156,6 +156,76 @@ TEST_CASE("a brick is marked all visible exactly when no cell of its map is empt
   }
 }
 
+TEST_CASE("a brick with few empty cells in its visible box marches every sample, to the same image") {
+  auto volume = openDataset("turbulence:32");
+  const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
+  const Brick whole = wholeVolumeBrick(*volume, 1);
+  const glm::vec2 scaleBias = normalisingScaleBias(range);
+  const MarchFunction simd = selectedMarchFunction();
+  bool sawFew = false, sawMany = false;
+  // Thresholds from none hidden to most hidden: opacity 0 below t.
+  for (const float t : {0.0f, 0.1f, 0.2f, 0.25f, 0.3f, 0.35f, 0.4f, 0.5f, 0.6f, 0.7f}) {
+    const TransferFunction tf({{0.0f, {0.2f, 0.3f, 0.9f}}, {1.0f, {1.0f, 0.9f, 0.6f}}},
+                              {{0.0f, 0.0f}, {t, 0.0f}, {1.0f, 0.6f}}, "threshold");
+    const TransferTable table(tf, RenderSettings{}.stepVoxels);
+    const EmptySpaceMap map(whole, table, scaleBias.x, scaleBias.y);
+    if (!map.anyVisible()) continue;
+    // The rule, recomputed from the exact reach: empty cells inside the visible cells' box.
+    const glm::ivec3 n = map.cellCount();
+    glm::ivec3 lo(n), hi(-1);
+    for (int z = 0; z < n.z; ++z)
+      for (int y = 0; y < n.y; ++y)
+        for (int x = 0; x < n.x; ++x)
+          if (map.reach(map.cellIndex(glm::ivec3(x, y, z))) == 0) {
+            lo = glm::min(lo, glm::ivec3(x, y, z));
+            hi = glm::max(hi, glm::ivec3(x, y, z));
+          }
+    std::size_t empty = 0, boxCells = 0;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          empty += map.reach(map.cellIndex(glm::ivec3(x, y, z))) != 0;
+          ++boxCells;
+        }
+    CAPTURE(t);
+    CHECK(map.marchesEverySample() == (empty * EmptySpaceMap::kFewEmptyCells <= boxCells));
+    if (map.allVisible()) CHECK(map.marchesEverySample());
+    // The march's codes hold the reach only where the march skips; the exact reach stays.
+    for (std::size_t i = 0; i < std::size_t(n.x) * n.y * n.z; ++i) {
+      const int codeReach = map.marchCodes()[i] & EmptySpaceMap::kReachMask;
+      CHECK(codeReach == (map.marchesEverySample() ? 0 : std::min<int>(map.reach(i), EmptySpaceMap::kReachMask)));
+    }
+    if (map.marchesEverySample() && empty > 0) sawFew = true;
+    if (!map.marchesEverySample()) sawMany = true;
+    if (!map.marchesEverySample() || empty == 0) continue;
+    // Marching the empty cells' samples (opacity 0) adds nothing: the image of skipping off, to
+    // rounding, with every owned sample taken; scalar and SIMD marches agree bit for bit.
+    RenderSettings on, off;
+    off.skipEmptySpace = false;
+    for (const float azimuth : {37.0f, 200.0f}) {
+      View view;
+      view.azimuthDeg = azimuth;
+      view.elevationDeg = azimuth > 100.0f ? -30.0f : 20.0f;
+      const Camera camera(view, glm::vec3(0.0f), glm::vec3(whole.volumeDims() - 1) * whole.spacing(), 64, 56);
+      const TransferTable shown(tf, on.stepVoxels);
+      RayCaster skipping(whole, shown, on, range), every(whole, shown, off, range), scalar(whole, shown, on, range);
+      skipping.useMarch(simd);
+      scalar.useMarch(&marchScalar);
+      RenderCounters a, b, c;
+      const Image withMap = skipping.render(camera, a), without = every.render(camera, b),
+                  reference = scalar.render(camera, c);
+      CAPTURE(azimuth);
+      CHECK(a.samples == b.samples);
+      CHECK(a.samples == c.samples);
+      CHECK(maxAbsDifference(withMap, without, withMap.rect().unite(without.rect())) <= 1e-5f);
+      CHECK(withMap.rect() == reference.rect());
+      CHECK(std::memcmp(withMap.data(), reference.data(), std::size_t(withMap.rect().area()) * sizeof(Rgba)) == 0);
+    }
+  }
+  CHECK(sawFew);   // the sweep met a brick with some, but few, empty cells
+  CHECK(sawMany);  // and one that skips
+}
+
 TEST_CASE("empty-space cells are 2^3 voxels for volumes up to 2^27 voxels and 4^3 above, on every brick") {
   CHECK(Brick::cellShiftFor(glm::ivec3(128)) == 1);
   CHECK(Brick::cellShiftFor(glm::ivec3(64, 64, 93)) == 1);

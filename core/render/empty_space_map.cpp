@@ -67,12 +67,18 @@ EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, flo
   visibleLo_ = glm::max(glm::vec3((lo + c0) << shift), glm::vec3(brick.owned().lo));
   visibleHi_ = glm::min(glm::vec3((hi + c0 + 1) << shift), glm::vec3(brick.owned().hi));
   allVisible_ = std::find(invisible.begin(), invisible.end(), std::uint8_t(1)) == invisible.end();
+  std::size_t emptyInBox = 0;
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) emptyInBox += invisible[cellIndex(glm::ivec3(x, y, z))];
+  const glm::ivec3 box = hi - lo + 1;
+  marchesEverySample_ = emptyInBox * kFewEmptyCells <= std::size_t(box.x) * box.y * box.z;
   reach_ = chessboardDistance(std::move(invisible), n);
   const std::vector<std::uint8_t>& uniform = brick.uniformCells();
   marchCodes_.resize(reach_.size() + kReachPadding, 0);
   for (std::size_t i = 0; i < reach_.size(); ++i) {
     const bool uniformVisible = uniformCells && reach_[i] == 0 && uniform[i] != 0;
-    marchCodes_[i] = uniformVisible ? kUniformBit : std::min(reach_[i], kReachMask);
+    marchCodes_[i] = uniformVisible ? kUniformBit : marchesEverySample_ ? 0 : std::min(reach_[i], kReachMask);
     anyUniform_ = anyUniform_ || uniformVisible;
   }
   reach_.resize(reach_.size() + kReachPadding, 0);

@@ -33,6 +33,7 @@ class EmptySpaceMap {
   //! The march's codes, one byte a cell (x fastest, padded as reachData): bits 0-6 the reach
   //! (capped at 127: a smaller cube of invisible cells is still invisible), bit 7 set on visible
   //! cells the brick marks uniform (Brick::uniformCells), whose samples take the cell's record.
+  //! Where the march takes every sample (marchesEverySample), every reach here is 0.
   const std::uint8_t* marchCodes() const { return marchCodes_.data(); }
   static constexpr std::uint8_t kUniformBit = 0x80, kReachMask = 0x7F;
   //! Some visible cell is uniform (some code has kUniformBit).
@@ -43,8 +44,15 @@ class EmptySpaceMap {
   }
 
   bool anyVisible() const { return anyVisible_; }
-  //! Every cell can hold a visible sample (every reach is 0): a march may skip the map.
+  //! Every cell can hold a visible sample (every reach is 0).
   bool allVisible() const { return allVisible_; }
+  //! The march takes every sample, skipping nothing (its codes hold no reach), so it may skip the
+  //! map: all cells are visible, or so few inside the visible box are not (at most one in
+  //! kFewEmptyCells) that testing every group of eight for them would cost more than shading their
+  //! samples, whose opacity is 0 (dense data: turbulence with 2^3 cells). Coverage and the
+  //! visible box still use the exact reach.
+  bool marchesEverySample() const { return marchesEverySample_; }
+  static constexpr std::size_t kFewEmptyCells = 16;
   //! Bounds (voxel coordinates, within the owned box) of the cells that can be visible; rays and
   //! the screen rectangle are clipped to them. The owned box when skipping is off.
   const glm::vec3& visibleLo() const { return visibleLo_; }
@@ -61,6 +69,7 @@ class EmptySpaceMap {
   glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
   bool anyVisible_ = false;
   bool allVisible_ = false;
+  bool marchesEverySample_ = false;
   bool anyUniform_ = false;
 };
 

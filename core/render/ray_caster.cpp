@@ -128,7 +128,7 @@ RayCaster::RayCaster(const Brick& brick, const TransferTable& table, const Rende
   shading.specularTable = specular_->data();
   march_.storedLo = brick.stored().lo;
   march_.cellCodes = emptySpace_->marchCodes();
-  march_.allVisible = emptySpace_->allVisible();
+  march_.allVisible = emptySpace_->marchesEverySample();
   march_.anyUniform = emptySpace_->anyUniform();
   march_.cellLo = brick.cellLo();
   march_.cellShift = brick.cellShift();

@@ -32,7 +32,7 @@ struct MarchContext {
   const std::uint8_t* cellCodes = nullptr;
   glm::ivec3 cellLo{0}, cellCount{0};
   int cellShift = 2;                //!< Brick::cellShift(): cells of 2^cellShift voxels a side
-  bool allVisible = false;          //!< every reach is 0 (EmptySpaceMap::allVisible): the march may skip the map
+  bool allVisible = false;          //!< every reach is 0 (EmptySpaceMap::marchesEverySample): the march may skip the map
   bool anyUniform = false;          //!< some code has kUniformBit (EmptySpaceMap::anyUniform): the map must be read
   glm::vec3 lo{0.0f}, hi{0.0f};     //!< owned box [lo, hi), voxel coordinates
   //! Early ray termination: the ray stops once its transmittance (1 - opacity) is at most this,
