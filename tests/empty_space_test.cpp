@@ -68,13 +68,15 @@ TEST_CASE("skipping empty space changes no pixel beyond rounding, only the numbe
     const TransferFunction tf = c.transfer == "threshold" ? threshold : loadTransferFunction(c.transfer);
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
     // The whole volume and a brick cut out of it (skipping works on the brick's own cells).
-    // Both sizes of empty-space cells (small volumes get 2^3, large ones 4^3: Brick::cellShiftFor)
-    // and both voxel formats (compact cells hold the stored values' ranges).
+    // All three sizes of empty-space cells (one voxel, 2^3, 4^3: Brick::cellShiftFor) and both
+    // voxel formats (compact cells hold the stored values' ranges).
     const VoxelBox cut{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)};
     const VoxelChoice compact = VoxelChoice::Compact;
-    const Brick bricks[] = {wholeVolumeBrick(*volume, 1),          test::brickOf(*volume, cut, 1),
+    const Brick bricks[] = {wholeVolumeBrick(*volume, 0),          test::brickOf(*volume, cut, 0),
+                            wholeVolumeBrick(*volume, 1),          test::brickOf(*volume, cut, 1),
                             wholeVolumeBrick(*volume, 2),          test::brickOf(*volume, cut, 2),
-                            wholeVolumeBrick(*volume, 2, compact), test::brickOf(*volume, cut, 1, compact)};
+                            wholeVolumeBrick(*volume, 2, compact), test::brickOf(*volume, cut, 1, compact),
+                            test::brickOf(*volume, cut, 0, compact)};
     for (const Brick& brick : bricks)
       for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f}) {
         View view;
@@ -226,9 +228,10 @@ TEST_CASE("a brick with few empty cells in its visible box marches every sample,
   CHECK(sawMany);  // and one that skips
 }
 
-TEST_CASE("empty-space cells are 2^3 voxels for volumes up to 2^27 voxels and 4^3 above, on every brick") {
-  CHECK(Brick::cellShiftFor(glm::ivec3(128)) == 1);
-  CHECK(Brick::cellShiftFor(glm::ivec3(64, 64, 93)) == 1);
+TEST_CASE("empty-space cells are one voxel up to 2^21 voxels, 2^3 up to 2^27 and 4^3 above, on every brick") {
+  CHECK(Brick::cellShiftFor(glm::ivec3(64, 64, 93)) == 0);
+  CHECK(Brick::cellShiftFor(glm::ivec3(128)) == 0);  // exactly 2^21
+  CHECK(Brick::cellShiftFor(glm::ivec3(128, 128, 129)) == 1);
   CHECK(Brick::cellShiftFor(glm::ivec3(256)) == 1);
   CHECK(Brick::cellShiftFor(glm::ivec3(302)) == 1);
   CHECK(Brick::cellShiftFor(glm::ivec3(512)) == 1);  // exactly 2^27
@@ -237,7 +240,8 @@ TEST_CASE("empty-space cells are 2^3 voxels for volumes up to 2^27 voxels and 4^
   // A brick follows its volume's size, not its own, so all of a volume's bricks agree.
   auto volume = openDataset("phantom:40");
   const Brick brick = test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(8)});
-  CHECK(brick.cellShift() == 1);
-  CHECK(brick.cellCount() == glm::ivec3(4));  // owned [0, 8): samples' floors 0..7 in cells 0..3
+  CHECK(brick.cellShift() == 0);
+  CHECK(brick.cellCount() == glm::ivec3(8));  // owned [0, 8): samples' floors 0..7, a cell each
+  CHECK(test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(8)}, 1).cellCount() == glm::ivec3(4));
   CHECK(test::brickOf(*volume, VoxelBox{glm::ivec3(0), glm::ivec3(8)}, 2).cellCount() == glm::ivec3(2));
 }

@@ -314,7 +314,7 @@ TEST_CASE("occlusion map: stopping each single-node ray at its map index changes
   for (const std::string data : {"block", "phantom:96"})
   for (const VoxelChoice voxels : {VoxelChoice::Float, VoxelChoice::Compact}) {
     auto volume = openData(data);
-    const Brick whole = wholeVolumeBrick(*volume, 0, voxels);
+    const Brick whole = wholeVolumeBrick(*volume, Brick::kCellShiftByVolume, voxels);
     const VolumeInfo& info = volume->info();
     RenderSettings settings;
     settings.stepVoxels = 0.6f;

@@ -75,13 +75,15 @@ void checkAgainstScalar(MarchFunction simd) {
     const TransferFunction tf = loadTransferFunction(c.transfer);
     const glm::vec2 range = resolveValueRange(RenderSettings{}, volume->info());
     // The whole volume and a brick cut out of it (offset voxel origin, cells and ghost layers).
-    // Both sizes of empty-space cells (small volumes get 2^3, large ones 4^3: Brick::cellShiftFor),
-    // and both voxel formats (large volumes store compact voxels: VoxelStorage::forVolume).
+    // All three sizes of empty-space cells (one voxel, 2^3, 4^3: Brick::cellShiftFor), and both
+    // voxel formats (large volumes store compact voxels: VoxelStorage::forVolume).
     const VoxelBox cut{glm::ivec3(3, 9, 0), glm::ivec3(dims.x - 1, 30, 21)};
     const VoxelChoice compact = VoxelChoice::Compact;
-    const Brick bricks[] = {wholeVolumeBrick(*volume, 1),          test::brickOf(*volume, cut, 1),
+    const Brick bricks[] = {wholeVolumeBrick(*volume, 0),          test::brickOf(*volume, cut, 0),
+                            wholeVolumeBrick(*volume, 1),          test::brickOf(*volume, cut, 1),
                             wholeVolumeBrick(*volume, 2),          test::brickOf(*volume, cut, 2),
-                            wholeVolumeBrick(*volume, 1, compact), test::brickOf(*volume, cut, 2, compact)};
+                            wholeVolumeBrick(*volume, 1, compact), test::brickOf(*volume, cut, 2, compact),
+                            wholeVolumeBrick(*volume, 0, compact)};
     for (const Brick& brick : bricks)
       for (const float azimuth : {0.0f, 37.0f, 90.0f, 211.0f})
         for (int variant = 0; variant < 4; ++variant) {

@@ -31,8 +31,8 @@ inline std::unique_ptr<MemoryVolume> makeVolume(glm::ivec3 dims, const std::func
 }
 
 //! The brick owning `owned` of `source`, with its replicated and ghost layers read from it.
-//! `cellShift` as Brick's (0: by the volume's size).
-inline Brick brickOf(const VolumeSource& source, const VoxelBox& owned, int cellShift = 0,
+//! `cellShift` as Brick's (kCellShiftByVolume: by the volume's size).
+inline Brick brickOf(const VolumeSource& source, const VoxelBox& owned, int cellShift = Brick::kCellShiftByVolume,
                      VoxelChoice voxels = VoxelChoice::Auto) {
   const VoxelBox stored = Brick::storedBoxFor(owned, source.info().dims);
   std::vector<float> raw(std::size_t(stored.count()));

@@ -102,8 +102,8 @@ TEST_CASE("the voxel format follows the volume's size unless the user chooses") 
 
 TEST_CASE("a compact brick: half the memory, the float brick's values and gradient directions") {
   auto volume = test::makeBlobs({30, 27, 33}, glm::vec3(1.0f, 1.3f, 0.7f));
-  const Brick whole = wholeVolumeBrick(*volume, 0, VoxelChoice::Float);
-  const Brick compact = wholeVolumeBrick(*volume, 0, VoxelChoice::Compact);
+  const Brick whole = wholeVolumeBrick(*volume, Brick::kCellShiftByVolume, VoxelChoice::Float);
+  const Brick compact = wholeVolumeBrick(*volume, Brick::kCellShiftByVolume, VoxelChoice::Compact);
   REQUIRE(compact.storage().compactFormat());
   CHECK(compact.compactData() != nullptr);
   CHECK(compact.voxelData() == nullptr);
@@ -135,7 +135,7 @@ TEST_CASE("a compact brick rebuilt from its shipped values, or cut from the volu
   auto volume = test::makeBlobs({26, 31, 24});
   const VolumeInfo& info = volume->info();
   const VoxelStorage storage = VoxelStorage::forVolume(info, VoxelChoice::Compact);
-  const Brick whole = wholeVolumeBrick(*volume, 0, VoxelChoice::Compact);
+  const Brick whole = wholeVolumeBrick(*volume, Brick::kCellShiftByVolume, VoxelChoice::Compact);
   const VoxelBox owned{glm::ivec3(5, 0, 9), glm::ivec3(19, 17, 23)};
   const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
   std::vector<float> raw(std::size_t(stored.count()));
@@ -155,7 +155,7 @@ TEST_CASE("a compact brick rebuilt from its shipped values, or cut from the volu
 TEST_CASE("compact interpolation reproduces a linear field, and agrees with the float interpolation") {
   // f = 3x - 2y + 5z + 40: trilinear interpolation is exact for it.
   auto volume = test::makeVolume({12, 10, 9}, [](int x, int y, int z) { return float(3 * x - 2 * y + 5 * z + 40); });
-  const Brick whole = wholeVolumeBrick(*volume, 0, VoxelChoice::Float);
+  const Brick whole = wholeVolumeBrick(*volume, Brick::kCellShiftByVolume, VoxelChoice::Float);
   const VolumeInfo& info = volume->info();
   const VoxelStorage storage = VoxelStorage::compact(info.minValue, info.maxValue, info.spacing);
   const VoxelBox owned{glm::ivec3(0), info.dims - 1};
@@ -182,7 +182,7 @@ TEST_CASE("compact interpolation reproduces a linear field, and agrees with the 
 TEST_CASE("under compact storage the distributed image equals the single-node image") {
   auto volume = test::makeBlobs({35, 30, 33}, glm::vec3(1.0f, 1.1f, 0.9f));
   const TransferFunction tf = test::testTransfer();
-  const Brick whole = wholeVolumeBrick(*volume, 0, VoxelChoice::Compact);
+  const Brick whole = wholeVolumeBrick(*volume, Brick::kCellShiftByVolume, VoxelChoice::Compact);
   const glm::vec2 range(volume->info().minValue, volume->info().maxValue);
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> az(-180.0f, 180.0f), el(-70.0f, 70.0f);
@@ -224,8 +224,8 @@ struct StorageComparison {
 //! The volume rendered from float and from compact bricks, same view, settings and transfer.
 StorageComparison compareStorage(const VolumeSource& volume, bool shading) {
   const glm::vec2 range(volume.info().minValue, volume.info().maxValue);
-  const Brick f = wholeVolumeBrick(volume, 0, VoxelChoice::Float);
-  const Brick c = wholeVolumeBrick(volume, 0, VoxelChoice::Compact);
+  const Brick f = wholeVolumeBrick(volume, Brick::kCellShiftByVolume, VoxelChoice::Float);
+  const Brick c = wholeVolumeBrick(volume, Brick::kCellShiftByVolume, VoxelChoice::Compact);
   View view;
   view.azimuthDeg = 30.0f, view.elevationDeg = 20.0f;
   view.distance = 2.5f;  // close: the volume fills most of the 96 x 96 frame

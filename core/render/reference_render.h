@@ -17,7 +17,9 @@ struct ReferenceResult {
 };
 
 //! The brick that owns the whole domain of `source` (reads every voxel).
-Brick wholeVolumeBrick(const VolumeSource& source, int cellShift = 0, VoxelChoice voxels = VoxelChoice::Auto);
+//! `cellShift` as Brick's (kCellShiftByVolume: by the volume's size).
+Brick wholeVolumeBrick(const VolumeSource& source, int cellShift = Brick::kCellShiftByVolume,
+                       VoxelChoice voxels = VoxelChoice::Auto);
 
 ReferenceResult renderReference(const Brick& whole, const View& view, int width, int height,
                                 const TransferFunction& tf, const RenderSettings& settings, glm::vec2 valueRange);

@@ -25,7 +25,8 @@ VoxelBox Brick::keptBoxFor(const VoxelBox& owned) {
 }
 
 int Brick::cellShiftFor(const glm::ivec3& dims) {
-  return std::int64_t(dims.x) * dims.y * dims.z <= kFineCellVoxels ? 1 : 2;
+  const std::int64_t voxels = std::int64_t(dims.x) * dims.y * dims.z;
+  return voxels <= kVoxelCellVoxels ? 0 : voxels <= kFineCellVoxels ? 1 : 2;
 }
 
 VoxelBox Brick::ownedVoxelsFor(const VoxelBox& owned, const glm::ivec3& dims) {
@@ -57,8 +58,8 @@ Brick::Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spa
       spacing_(spacing),
       storage_(storage),
       shipping_(shipping),
-      cellShift_(cellShift != 0 ? cellShift : cellShiftFor(dims)) {
-  KDSWAP_CHECK(cellShift_ >= 1 && cellShift_ <= 4);
+      cellShift_(cellShift == kCellShiftByVolume ? cellShiftFor(dims) : cellShift) {
+  KDSWAP_CHECK(cellShift_ >= 0 && cellShift_ <= 4);
   if (owned_.empty()) return;
   KDSWAP_CHECK_EQ(raw.size(), std::size_t(received_.count()));
   const glm::ivec3 r = received_.size();

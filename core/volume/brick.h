@@ -36,11 +36,14 @@ class Brick {
 
   Brick() = default;
   //! `raw` holds the voxels of storedBoxFor(owned, dims) (x fastest); they are consumed.
-  //! `cellShift`: the empty-space cells' size, 2^cellShift voxels a side (1..4); 0 chooses it from
-  //! the volume's size (cellShiftFor), as every node does, so all of a volume's bricks agree.
+  //! `cellShift`: the empty-space cells' size, 2^cellShift voxels a side (0..4); kCellShiftByVolume
+  //! chooses it from the volume's size (cellShiftFor), as every node does, so all of a volume's
+  //! bricks agree.
   //! `storage`: the volume's (VoxelStorage::forVolume), the same for all its bricks.
   Brick(const VoxelBox& owned, const glm::ivec3& dims, const glm::vec3& spacing, std::vector<float> raw,
-        Shipping shipping = Shipping::No, int cellShift = 0, const VoxelStorage& storage = VoxelStorage{});
+        Shipping shipping = Shipping::No, int cellShift = kCellShiftByVolume,
+        const VoxelStorage& storage = VoxelStorage{});
+  static constexpr int kCellShiftByVolume = -1;
 
   //! Voxel indices a brick owning `owned` must receive: [lo - 1, hi + 1] clipped to the volume.
   static VoxelBox storedBoxFor(const VoxelBox& owned, const glm::ivec3& dims);
@@ -90,12 +93,15 @@ class Brick {
   //! range containing the min and max of every voxel a trilinear sample there can touch
   //! (CellRangeCodes: 2 bytes a cell). Sample values in the cell lie within that range.
   int cellShift() const { return cellShift_; }
-  //! The cell size for a volume of `dims`: 2^3 voxels up to kFineCellVoxels voxels (512^3), 4^3
-  //! above. Finer cells leave out more invisible samples (frames 7-13% faster on the 256^3-class
-  //! scans and the phantom with waves, dense turbulence within 2%), but cost ~0.4 bytes per voxel
-  //! in the cells' codes and the empty-space maps against ~0.05: over 50 MB past 512^3, where the
-  //! coarser cells keep memory to the voxels themselves.
+  //! The cell size for a volume of `dims`: one voxel up to kVoxelCellVoxels voxels (128^3), 2^3
+  //! voxels up to kFineCellVoxels (512^3), 4^3 above. Finer cells leave out more invisible samples
+  //! and mark more samples uniform (one-voxel cells: the default scene 4% and small scans 5-10%
+  //! faster; 2^3 against 4^3: the 256^3-class scans and the phantom with waves 7-13%, dense
+  //! turbulence within 2%), but cost memory: ~3 bytes per voxel for one-voxel cells, ~0.4 for 2^3,
+  //! ~0.05 for 4^3, in the cells' codes and the empty-space maps (~6 MB for 128^3 one-voxel cells,
+  //! over 50 MB past 512^3 for 2^3 cells, where coarser cells keep memory to the voxels).
   static int cellShiftFor(const glm::ivec3& dims);
+  static constexpr std::int64_t kVoxelCellVoxels = std::int64_t(1) << 21;
   static constexpr std::int64_t kFineCellVoxels = std::int64_t(1) << 27;
   const glm::ivec3& cellLo() const { return cellLo_; }      //!< first cell index per axis
   const glm::ivec3& cellCount() const { return cellCount_; }
