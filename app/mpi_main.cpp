@@ -126,7 +126,7 @@ int writeResults(const MpiRenderOptions& o, const Scene& scene, const MpiFrameOu
   if (o.verify) {
     // The reference reads the whole volume, on rank 0 only; with passes, the mean of the same passes.
     const FrameRequest& r = scene.request;
-    const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
+    const Brick whole = wholeVolumeBrick(*scene.source, Brick::kCellShiftByVolume, scene.cluster.voxels);
     const Image reference =
         referencePasses(whole, r, resolveValueRange(r.settings, scene.source->info()), o.passes);
     const float diff = maxAbsDifference(frame.image, reference, frame.image.rect());

@@ -130,7 +130,7 @@ void run(const RenderOptions& o) {
   bool verified = true;
   if (o.verify) {
     // The single-node reference of every pass, averaged as the passes are.
-    const Brick whole = wholeVolumeBrick(*scene.source, 0, scene.cluster.voxels);
+    const Brick whole = wholeVolumeBrick(*scene.source, Brick::kCellShiftByVolume, scene.cluster.voxels);
     const Image reference = referencePasses(whole, scene.request,
                                             resolveValueRange(scene.request.settings, scene.source->info()), o.passes);
     const float diff = maxAbsDifference(image, reference, image.rect());

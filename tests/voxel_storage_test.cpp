@@ -140,8 +140,8 @@ TEST_CASE("a compact brick rebuilt from its shipped values, or cut from the volu
   const VoxelBox stored = Brick::storedBoxFor(owned, info.dims);
   std::vector<float> raw(std::size_t(stored.count()));
   volume->read(stored, raw.data());
-  const Brick brick(owned, info.dims, info.spacing, raw, Brick::Shipping::Yes, 0, storage);
-  const Brick rebuilt(owned, info.dims, info.spacing, brick.storedValues(), Brick::Shipping::Yes, 0, storage);
+  const Brick brick(owned, info.dims, info.spacing, raw, Brick::Shipping::Yes, Brick::kCellShiftByVolume, storage);
+  const Brick rebuilt(owned, info.dims, info.spacing, brick.storedValues(), Brick::Shipping::Yes, Brick::kCellShiftByVolume, storage);
   CHECK(std::memcmp(brick.compactData(), rebuilt.compactData(),
                     std::size_t(brick.stored().count()) * sizeof(CompactVoxel)) == 0);
   long differing = 0;
@@ -161,7 +161,7 @@ TEST_CASE("compact interpolation reproduces a linear field, and agrees with the 
   const VoxelBox owned{glm::ivec3(0), info.dims - 1};
   std::vector<float> raw(std::size_t(info.voxelCount()));
   volume->read(VoxelBox{glm::ivec3(0), info.dims}, raw.data());
-  const Brick compact(owned, info.dims, info.spacing, raw, Brick::Shipping::No, 0, storage);
+  const Brick compact(owned, info.dims, info.spacing, raw, Brick::Shipping::No, Brick::kCellShiftByVolume, storage);
   const VoxelAddressing at(compact);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> ux(0.0f, 10.999f), uy(0.0f, 8.999f), uz(0.0f, 7.999f);

@@ -29,7 +29,7 @@ namespace {
 // [1] One whole-volume brick rendered on one thread.
 RayCastFigure castOnOneCore(const VolumeSource& source, const std::string& type, bool shaded, MarchFunction march,
                             VoxelChoice voxels, const MicroOptions& o) {
-  const Brick brick = wholeVolumeBrick(source, 0, voxels);
+  const Brick brick = wholeVolumeBrick(source, Brick::kCellShiftByVolume, voxels);
   RenderSettings settings;
   settings.shading = shaded;
   settings.stepVoxels = 0.5f;
