@@ -97,8 +97,8 @@ class Brick {
   //! voxels up to kFineCellVoxels (512^3), 4^3 above. Finer cells leave out more invisible samples
   //! and mark more samples uniform (one-voxel cells: the default scene 4% and small scans 5-10%
   //! faster; 2^3 against 4^3: the 256^3-class scans and the phantom with waves 7-13%, dense
-  //! turbulence within 2%), but cost memory: ~3 bytes per voxel for one-voxel cells, ~0.4 for 2^3,
-  //! ~0.05 for 4^3, in the cells' codes and the empty-space maps (~6 MB for 128^3 one-voxel cells,
+  //! turbulence within 2%), but cost memory: ~5 bytes per voxel for one-voxel cells, ~0.4 for 2^3,
+  //! ~0.05 for 4^3, in the cells' codes and the empty-space maps (~10 MB for 128^3 one-voxel cells,
   //! over 50 MB past 512^3 for 2^3 cells, where coarser cells keep memory to the voxels).
   static int cellShiftFor(const glm::ivec3& dims);
   static constexpr std::int64_t kVoxelCellVoxels = std::int64_t(1) << 21;
