@@ -78,7 +78,7 @@ TEST_CASE("cell coverage: bricks with more cells a side than it keeps groups are
   const Scene& s = scene();
   // Two-voxel cells over the whole volume: 18-22 cells a side, grouped by two.
   const Brick brick = wholeVolumeBrick(*s.volume, 1);
-  REQUIRE(brick.cellCount().x > CellCoverage::kMaxGroupsPerAxis);
+  REQUIRE(brick.cellCount().x > CellGroups::kMaxPerAxis);
   RenderSettings settings;
   const TransferTable table(s.tf, settings.stepVoxels);
   const RayCaster caster(brick, table, settings, s.range());

@@ -7,16 +7,6 @@
 #include <cmath>
 
 namespace kdswap {
-namespace {
-
-//! Cells per group along one axis: the smallest power of two leaving at most kMaxGroupsPerAxis.
-int groupSize(int cells) {
-  int size = 1;
-  while ((cells + size - 1) / size > CellCoverage::kMaxGroupsPerAxis) size *= 2;
-  return size;
-}
-
-}  // namespace
 
 CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, const Camera& camera,
                            const Rect& rect) {
@@ -28,47 +18,16 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
     rect_ = Rect{};
     return;
   }
-  wordsPerRow_ = (rect.w + 63) / 64 + 1;
-  bits_.assign(std::size_t(wordsPerRow_) * std::size_t(rect.h), 0);
-
-  // [Groups] A group counts as visible when any of its cells is (reach 0). Along x, a cell of
-  // reach n has n - 1 invisible cells after it, and a group found visible needs no more looks, in
-  // this row or the next. Group sizes are powers of two: a cell's group is a shift away, not
-  // three integer divisions (the phantom at P = 64 with waves: coverage 8% cheaper).
+  // [Groups] A group counts as visible when any of its cells is (found once, with the map).
+  const CellGroups& groups = emptySpace.groups();
   const glm::ivec3 cells = emptySpace.cellCount();
-  const glm::ivec3 size(groupSize(cells.x), groupSize(cells.y), groupSize(cells.z));
-  const glm::ivec3 groupShift(std::countr_zero(unsigned(size.x)), std::countr_zero(unsigned(size.y)),
-                              std::countr_zero(unsigned(size.z)));
-  const glm::ivec3 groups = (cells + size - 1) / size;
-  std::vector<std::uint8_t> visible(std::size_t(groups.x) * std::size_t(groups.y) * std::size_t(groups.z), 0);
-  const auto groupIndex = [&](int gx, int gy, int gz) {
-    return (std::size_t(gz) * std::size_t(groups.y) + std::size_t(gy)) * std::size_t(groups.x) + std::size_t(gx);
-  };
-  std::size_t visibleGroups = 0;
-  for (int z = 0; z < cells.z; ++z)
-    for (int y = 0; y < cells.y; ++y) {
-      std::uint8_t* row = &visible[groupIndex(0, y >> groupShift.y, z >> groupShift.z)];
-      const std::uint8_t* reach = emptySpace.reachData() + emptySpace.cellIndex(glm::ivec3(0, y, z));
-      for (int x = 0; x < cells.x;) {
-        const int gx = x >> groupShift.x;
-        if (row[gx]) {  // already visible: on to the next group along x
-          x = (gx + 1) << groupShift.x;
-          continue;
-        }
-        if (reach[x] > 0) {
-          x += reach[x];
-          continue;
-        }
-        row[gx] = 1;
-        ++visibleGroups;
-        x = (gx + 1) << groupShift.x;
-      }
-    }
   // Mostly visible (a dense field): the union would cover nearly every pixel, so it is not built.
-  if (visibleGroups * kDenseDenominator > visible.size() * kDenseNumerator) {
+  if (groups.visibleCount * kDenseDenominator > groups.visible.size() * kDenseNumerator) {
     coverAll();
     return;
   }
+  wordsPerRow_ = (rect.w + 63) / 64 + 1;
+  bits_.assign(std::size_t(wordsPerRow_) * std::size_t(rect.h), 0);
 
   // [Corners] The groups' corners lie on a lattice: per axis, group i starts at cell i * size,
   // clipped to the owned box (samples lie in it). Camera::project is linear in each coordinate
@@ -79,15 +38,15 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
   const int shift = brick.cellShift();
   std::array<std::vector<glm::vec3>, 3> terms;  // per axis and lattice line: (right, up, forward) terms
   for (int a = 0; a < 3; ++a) {
-    terms[std::size_t(a)].resize(std::size_t(groups[a]) + 1);
-    for (int i = 0; i <= groups[a]; ++i) {
-      const int cell = std::min(i * size[a], cells[a]);
+    terms[std::size_t(a)].resize(std::size_t(groups.count[a]) + 1);
+    for (int i = 0; i <= groups.count[a]; ++i) {
+      const int cell = std::min(i * groups.size[a], cells[a]);
       const int voxel = std::clamp((cellLo[a] + cell) << shift, ownedLo[a], ownedHi[a]);
       const float v = float(voxel) * spacing[a] - b.eye[a];
       terms[std::size_t(a)][std::size_t(i)] = glm::vec3(v * b.right[a], v * b.up[a], v * b.forward[a]);
     }
   }
-  const int lx = groups.x + 1, ly = groups.y + 1, lz = groups.z + 1;
+  const int lx = groups.count.x + 1, ly = groups.count.y + 1, lz = groups.count.z + 1;
   std::vector<glm::vec2> pixel(std::size_t(lx) * std::size_t(ly) * std::size_t(lz));
   for (int k = 0; k < lz; ++k)
     for (int j = 0; j < ly; ++j)
@@ -110,10 +69,10 @@ CellCoverage::CellCoverage(const Brick& brick, const EmptySpaceMap& emptySpace, 
       }
 
   // [Rectangles] Each visible group's bounding rectangle, with projectBox's pixel of slack.
-  for (int gz = 0; gz < groups.z; ++gz)
-    for (int gy = 0; gy < groups.y; ++gy)
-      for (int gx = 0; gx < groups.x; ++gx) {
-        if (!visible[groupIndex(gx, gy, gz)]) continue;
+  for (int gz = 0; gz < groups.count.z; ++gz)
+    for (int gy = 0; gy < groups.count.y; ++gy)
+      for (int gx = 0; gx < groups.count.x; ++gx) {
+        if (!groups.visible[groups.index(gx, gy, gz)]) continue;
         glm::vec2 lo(1e30f), hi(-1e30f);
         for (int corner = 0; corner < 8; ++corner) {
           const int i = gx + (corner & 1), j = gy + (corner >> 1 & 1), k = gz + (corner >> 2 & 1);

@@ -8,8 +8,8 @@
 // The covered pixels are the union of the visible cells' projected rectangles, each with
 // Camera::projectBox's pixel of slack: a ray through a pixel centre that meets a cell's box
 // projects into the cell's projected hull, so skipping the others changes no image bit and no
-// sample count. Bricks with many cells are covered by groups of cells (a group counts as visible
-// when any of its cells is), so building the coverage stays a few microseconds per brick.
+// sample count. Bricks with many cells are covered by groups of cells (CellGroups: a group counts
+// as visible when any of its cells is), so building the coverage stays a few microseconds per brick.
 #pragma once
 
 #include <cstdint>
@@ -24,9 +24,6 @@ namespace kdswap {
 
 class CellCoverage {
  public:
-  //! At most this many groups of cells per axis: a brick with more cells per axis is covered by
-  //! groups of 2, 4, ... cells (the phantom's 64^3 bricks at P = 64 by groups of 2^3).
-  static constexpr int kMaxGroupsPerAxis = 12;
   //! Bricks with more than this share of their groups visible cover every pixel, unbuilt.
   static constexpr std::size_t kDenseNumerator = 3, kDenseDenominator = 4;
 

@@ -81,6 +81,7 @@ EmptySpaceMap::EmptySpaceMap(const Brick& brick, const TransferTable& table, flo
     marchCodes_[i] = uniformVisible ? kUniformBit : marchesEverySample_ ? 0 : std::min(reach_[i], kReachMask);
     anyUniform_ = anyUniform_ || uniformVisible;
   }
+  if (!allVisible_) groups_ = CellGroups(reach_.data(), n);
   reach_.resize(reach_.size() + kReachPadding, 0);
 }
 

@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/render/cell_groups.h"
 #include "core/transfer/transfer_function.h"
 #include "core/volume/brick.h"
 
@@ -57,6 +58,9 @@ class EmptySpaceMap {
   //! the screen rectangle are clipped to them. The owned box when skipping is off.
   const glm::vec3& visibleLo() const { return visibleLo_; }
   const glm::vec3& visibleHi() const { return visibleHi_; }
+  //! The cells in groups, for the coverage of each frame; built only when some cells are visible
+  //! and some are not (otherwise the coverage needs none).
+  const CellGroups& groups() const { return groups_; }
 
   //! Chessboard distance, capped at 255, from each cell to the nearest cell marked 0 (x fastest).
   //! Cells marked 0 stay 0; with no 0 at all every cell gets 255. Exposed for its test.
@@ -67,6 +71,7 @@ class EmptySpaceMap {
   std::vector<std::uint8_t> reach_;
   std::vector<std::uint8_t> marchCodes_;
   glm::vec3 visibleLo_{0.0f}, visibleHi_{0.0f};
+  CellGroups groups_;
   bool anyVisible_ = false;
   bool allVisible_ = false;
   bool marchesEverySample_ = false;
