@@ -36,7 +36,8 @@ TEST_CASE("cell groups: a group is visible exactly when one of its cells can be"
       for (int z = 0; z < cells.z; ++z)
         for (int y = 0; y < cells.y; ++y)
           for (int x = 0; x < cells.x; ++x)
-            if (reach[(std::size_t(z) * std::size_t(cells.y) + std::size_t(y)) * std::size_t(cells.x) + std::size_t(x)] == 0)
+            if (reach[(std::size_t(z) * std::size_t(cells.y) + std::size_t(y)) * std::size_t(cells.x) +
+                      std::size_t(x)] == 0)
               expected[groups.index(x >> groups.shift.x, y >> groups.shift.y, z >> groups.shift.z)] = 1;
       CHECK(groups.visible == expected);
       std::size_t count = 0;

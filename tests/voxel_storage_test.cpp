@@ -141,7 +141,8 @@ TEST_CASE("a compact brick rebuilt from its shipped values, or cut from the volu
   std::vector<float> raw(std::size_t(stored.count()));
   volume->read(stored, raw.data());
   const Brick brick(owned, info.dims, info.spacing, raw, Brick::Shipping::Yes, Brick::kCellShiftByVolume, storage);
-  const Brick rebuilt(owned, info.dims, info.spacing, brick.storedValues(), Brick::Shipping::Yes, Brick::kCellShiftByVolume, storage);
+  const Brick rebuilt(owned, info.dims, info.spacing, brick.storedValues(), Brick::Shipping::Yes,
+                      Brick::kCellShiftByVolume, storage);
   CHECK(std::memcmp(brick.compactData(), rebuilt.compactData(),
                     std::size_t(brick.stored().count()) * sizeof(CompactVoxel)) == 0);
   long differing = 0;

@@ -103,12 +103,14 @@ void loadBricks(NodeState& state, int node, const VolumeSource& source, const Kd
   state.rank = node;
   if (layout.perNode() == 1) {
     const VoxelBox& owned = tree.brick(node);
-    state.brick = Brick(owned, info.dims, info.spacing, read(owned), Brick::Shipping::No, Brick::kCellShiftByVolume, storage);
+    state.brick = Brick(owned, info.dims, info.spacing, read(owned), Brick::Shipping::No, Brick::kCellShiftByVolume,
+                        storage);
     return;
   }
   for (int b = node * layout.perNode(); b < (node + 1) * layout.perNode(); ++b)
     state.pieces.insert_or_assign(
-        b, Brick(layout.box(b), info.dims, info.spacing, read(layout.box(b)), Brick::Shipping::Yes, Brick::kCellShiftByVolume, storage));
+        b, Brick(layout.box(b), info.dims, info.spacing, read(layout.box(b)), Brick::Shipping::Yes,
+                 Brick::kCellShiftByVolume, storage));
 }
 
 //! Collective: throws on every rank when any rank has a problem (see firstProblemOfAnyRank).

@@ -101,10 +101,12 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   if (m.header.size() == 10) {
     const int piece = int(m.header[9]);
     node.pieces.insert_or_assign(piece,
-                                 Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes, Brick::kCellShiftByVolume, storage));
+                                 Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::Yes,
+                                       Brick::kCellShiftByVolume, storage));
     node.pieceEmptySpace.erase(piece);
   } else {
-    node.brick = Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::No, Brick::kCellShiftByVolume, storage);
+    node.brick =
+        Brick(owned, dims, spacing, std::move(m.payload), Brick::Shipping::No, Brick::kCellShiftByVolume, storage);
     node.brickEmptySpace.clear();
   }
 }

@@ -23,7 +23,8 @@ CellGroups::CellGroups(const std::uint8_t* reach, const glm::ivec3& cells) {
   for (int z = 0; z < cells.z; ++z)
     for (int y = 0; y < cells.y; ++y) {
       std::uint8_t* row = &visible[index(0, y >> shift.y, z >> shift.z)];
-      const std::uint8_t* cell = reach + (std::size_t(z) * std::size_t(cells.y) + std::size_t(y)) * std::size_t(cells.x);
+      const std::uint8_t* cell =
+          reach + (std::size_t(z) * std::size_t(cells.y) + std::size_t(y)) * std::size_t(cells.x);
       for (int x = 0; x < cells.x;) {
         const int gx = x >> shift.x;
         if (row[gx]) {  // already visible: on to the next group along x
