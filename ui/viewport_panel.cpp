@@ -29,6 +29,10 @@ ImVec4 fitRect(ImVec2 pos, ImVec2 avail, int w, int h) {
 
 void drawStatusLine(GuiState& state) {
   ImGui::Checkbox("Bricks", &state.showBricks);
+  // The numbers are not ranks (the other panels label nodes 0..P-1): say so where they are shown.
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each node's subvolume in its colour, numbered in front-to-back order for this view\n"
+                      "(1 = nearest the eye: the order binary swap composites in)");
   ImGui::SameLine();
   if (ImGui::Button("Reset view (R)")) {
     state.request.view = resetView(state.request.view);
