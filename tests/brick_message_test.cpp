@@ -1,7 +1,7 @@
 // The brick message, the one large message of the virtual cluster and of MPI: a node rebuilds
 // exactly the brick the host cut (box, volume size, spacing, voxel storage, values), and a message
-// with a wrong header, an unknown storage format or the wrong number of voxels is refused with an
-// error instead of building a brick from it.
+// with a wrong header, a box outside the volume, an unknown storage format or the wrong number of
+// voxels is refused with an error instead of building a brick from it.
 #include <doctest/doctest.h>
 
 #include "core/cluster/node_program.h"
@@ -12,7 +12,8 @@ using namespace kdswap;
 
 namespace {
 
-const VoxelBox kOwned{glm::ivec3(4, 0, 2), glm::ivec3(12, 8, 10)};
+// Touches the volume's last sample plane in y (owned boxes end at dims - 1 there).
+const VoxelBox kOwned{glm::ivec3(4, 0, 2), glm::ivec3(12, 7, 10)};
 const glm::ivec3 kDims(16, 8, 12);
 const glm::vec3 kSpacing(1.0f, 1.5f, 2.0f);
 
@@ -93,6 +94,16 @@ TEST_CASE("malformed brick messages are refused") {
   fewer.pop_back();
   CHECK_THROWS_WITH_AS(received(brickMessage(kOwned, kDims, kSpacing, VoxelStorage{}, fewer)),
                        "brick message holds the wrong number of voxels", Error);
+
+  // A box past the last sample plane would read voxels the message does not hold.
+  const VoxelBox pastTheEnd{glm::ivec3(4, 0, 2), glm::ivec3(12, 8, 10)};
+  std::vector<float> values(std::size_t(Brick::storedBoxFor(pastTheEnd, kDims).count()), 0.5f);
+  CHECK_THROWS_WITH_AS(received(brickMessage(pastTheEnd, kDims, kSpacing, VoxelStorage{}, values)),
+                       "brick message: its box lies outside the volume", Error);
+
+  Message negative = brickMessage(kOwned, kDims, kSpacing, VoxelStorage{}, storedValues());
+  negative.header[0] = -1;
+  CHECK_THROWS_WITH_AS(received(std::move(negative)), "malformed brick message", Error);
 
   Message noPreamble;
   noPreamble.header = {0, 0, 0, 2, 2, 2, 2, 2, 2};

@@ -3,6 +3,7 @@
 #include "core/cluster/node_program.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/comm/mailbox.h"
 #include "core/composite/image_message.h"
@@ -87,9 +88,16 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   if ((m.header.size() != 9 && m.header.size() != 10) || m.payload.size() < kBrickPreamble ||
       (m.payload[3] != 0.0f && m.payload[3] != 1.0f))
     throw Error("malformed brick message");
+  if (!std::all_of(m.header.begin(), m.header.begin() + 9,
+                   [](std::int64_t v) { return v >= 0 && v <= std::numeric_limits<int>::max(); }))
+    throw Error("malformed brick message");
   const VoxelBox owned{glm::ivec3(int(m.header[0]), int(m.header[1]), int(m.header[2])),
                        glm::ivec3(int(m.header[3]), int(m.header[4]), int(m.header[5]))};
   const glm::ivec3 dims(int(m.header[6]), int(m.header[7]), int(m.header[8]));
+  // Samples lie in [0, dims - 1) and a brick keeps one more layer: a box reaching past dims - 1
+  // would build the brick from voxels beyond those the message holds.
+  if (!owned.empty() && (owned.hi.x > dims.x - 1 || owned.hi.y > dims.y - 1 || owned.hi.z > dims.z - 1))
+    throw Error("brick message: its box lies outside the volume");
   const glm::vec3 spacing(m.payload[0], m.payload[1], m.payload[2]);
   VoxelStorage storage;
   storage.format = m.payload[3] == 1.0f ? VoxelFormat::Compact : VoxelFormat::Float;
