@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <limits>
 
+#include <glm/vector_relational.hpp>
+
 #include "core/comm/mailbox.h"
 #include "core/composite/image_message.h"
 #include "core/render/ray_caster.h"
@@ -85,18 +87,16 @@ void receiveBrick(NodeState& node, Communicator& comm, int source) {
   Message m = comm.receive(source, kBrickTag);
   // header: owned lo (3), owned hi (3), volume dims (3) [, piece]; spacing (3) and the voxel
   // storage (format, value origin and step, gradient scale) travel as the first payload values.
+  const auto fitsInt = [](std::int64_t v) { return v >= 0 && v <= std::numeric_limits<int>::max(); };
   if ((m.header.size() != 9 && m.header.size() != 10) || m.payload.size() < kBrickPreamble ||
-      (m.payload[3] != 0.0f && m.payload[3] != 1.0f))
-    throw Error("malformed brick message");
-  if (!std::all_of(m.header.begin(), m.header.begin() + 9,
-                   [](std::int64_t v) { return v >= 0 && v <= std::numeric_limits<int>::max(); }))
+      (m.payload[3] != 0.0f && m.payload[3] != 1.0f) || !std::all_of(m.header.begin(), m.header.begin() + 9, fitsInt))
     throw Error("malformed brick message");
   const VoxelBox owned{glm::ivec3(int(m.header[0]), int(m.header[1]), int(m.header[2])),
                        glm::ivec3(int(m.header[3]), int(m.header[4]), int(m.header[5]))};
   const glm::ivec3 dims(int(m.header[6]), int(m.header[7]), int(m.header[8]));
   // Samples lie in [0, dims - 1) and a brick keeps one more layer: a box reaching past dims - 1
   // would build the brick from voxels beyond those the message holds.
-  if (!owned.empty() && (owned.hi.x > dims.x - 1 || owned.hi.y > dims.y - 1 || owned.hi.z > dims.z - 1))
+  if (!owned.empty() && glm::any(glm::greaterThan(owned.hi, dims - 1)))
     throw Error("brick message: its box lies outside the volume");
   const glm::vec3 spacing(m.payload[0], m.payload[1], m.payload[2]);
   VoxelStorage storage;
