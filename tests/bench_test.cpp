@@ -319,6 +319,23 @@ TEST_CASE("targets over several runs are judged by the median of the runs; peak 
   CHECK(medianOfRuns({}).empty());
 }
 
+TEST_CASE("a P = 64 / P = 1 ratio's note gives both cells' samples and what the miss comes from") {
+  // P = 64 took 1.67 x one node's samples: the excess lies behind matter (the paper's nodes).
+  const std::string behind = wallRatioNote(0.0120, 0.0262, 0.82e6, 1.37e6);
+  CHECK(behind.find("P=1 wall 12.00 ms, P=64 wall 26.20 ms") != std::string::npos);
+  CHECK(behind.find("samples a frame 0.82 M and 1.37 M") != std::string::npos);
+  CHECK(behind.find("1.67 x: the nodes sample behind") != std::string::npos);
+  CHECK(behind.find("cost of 64 bricks") == std::string::npos);
+  // The same samples (waves): what is left is the per-brick and per-phase cost.
+  const std::string fixedCost = wallRatioNote(0.0120, 0.0146, 0.82e6, 0.83e6, " (one node)");
+  CHECK(fixedCost.find("P=1 wall 12.00 ms (one node), P=64 wall 14.60 ms") != std::string::npos);
+  CHECK(fixedCost.find("1.01 x: the rest is the cost of 64 bricks") != std::string::npos);
+  CHECK(fixedCost.find("sample behind") == std::string::npos);
+  // An interrupted cell has no samples: no ratio of them, no verdict on the cause.
+  const std::string none = wallRatioNote(0.0120, 0.0, 0.0, 0.0);
+  CHECK(none.find(" x: ") == std::string::npos);
+}
+
 TEST_CASE("a target not run says why, in one run or several, and shows no measurement") {
   const SpeedTarget missing{"CT head wall", "kdswap bench --volume h.nhdr ...", 0.0, 42.0, "ms", false, false,
                             "h.nhdr not found (pass --head FILE)"};

@@ -78,11 +78,13 @@ BenchCell measure(const VolumeSource& source, const CellSpec& spec, int frames, 
 //! Wall time at P = spec.nodes over wall time at P = 1, the two cells measured in turns.
 struct WallRatio {
   double ratio = 0, p1Seconds = 0, pSeconds = 0;
+  double p1Samples = 0, pSamples = 0;  //!< per frame: where P nodes take more, they sample behind
 };
 WallRatio interleavedWallRatio(const VolumeSource& source, const CellSpec& spec, int frames,
                                const std::atomic<bool>* stop, bool& interrupted) {
   const std::vector<BenchCell> c = measureCells(source, spec, frames, stop, interrupted, {1, spec.nodes}, true);
-  return {c[0].wallSeconds > 0 ? c[1].wallSeconds / c[0].wallSeconds : 0.0, c[0].wallSeconds, c[1].wallSeconds};
+  return {c[0].wallSeconds > 0 ? c[1].wallSeconds / c[0].wallSeconds : 0.0, c[0].wallSeconds, c[1].wallSeconds,
+          c[0].samples, c[1].samples};
 }
 
 std::string gridCommand(const std::string& data, const CellSpec& s, int frames, const char* extra = "") {
@@ -102,6 +104,16 @@ std::string ms(double seconds) {
 std::string fixed(double value) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f", value);
+  return buf;
+}
+
+//! P nodes that take at most this many times one node's samples take "the same" (rounding of
+//! segment ends, ray phases): the notes then blame the per-brick costs, not samples behind.
+constexpr double kSameSamples = 1.05;
+
+std::string megaSamples(double samples) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f M", samples / 1e6);
   return buf;
 }
 
@@ -144,7 +156,7 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                  "kdswap bench " + phantomData + " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --interleave --frames " +
                      std::to_string(o.frames),
                  ratio.ratio, 1.15, "x", false, !interrupted,
-                 "P=1 wall " + ms(ratio.p1Seconds) + ", P=64 wall " + ms(ratio.pSeconds) + ", measured in turns"});
+                 wallRatioNote(ratio.p1Seconds, ratio.pSeconds, ratio.p1Samples, ratio.pSamples)});
   if (stopped()) return out;
 
   say("phantom:256 uint8, P=64, front-to-back waves ...");
@@ -161,8 +173,8 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
                        " --tf grayscale --sizes 512 --nodes 1,64 --step 1 --waves --interleave --frames " +
                        std::to_string(o.frames),
                    wavesRatio.ratio, 1.15, "x", false, !interrupted,
-                   "P=1 wall " + ms(wavesRatio.p1Seconds) + " (P=1 has no waves: one node), P=64 wall " +
-                       ms(wavesRatio.pSeconds) + ", measured in turns"});
+                   wallRatioNote(wavesRatio.p1Seconds, wavesRatio.pSeconds, wavesRatio.p1Samples, wavesRatio.pSamples,
+                                 " (P=1 has no waves: one node)")});
   }
   if (stopped()) return out;
 
@@ -202,11 +214,17 @@ std::vector<SpeedTarget> runSpeedTargets(const TargetOptions& o, const std::func
     const BenchCell c = measure(volume, head, o.frames, stop, interrupted);
     t3.measured = c.wallSeconds * 1e3;
     t3.ran = !interrupted;
+    t3.note = megaSamples(c.samples) + " samples a frame";
     if (!stopped()) {
       say("CT head, P=64, front-to-back waves ...");
       const BenchCell w = measure(volume, headWaves, o.frames, stop, interrupted);
       t3w.measured = w.wallSeconds * 1e3;
       t3w.ran = !interrupted;
+      t3w.note = megaSamples(w.samples) + " samples a frame (none behind the single-node ray's end)";
+      // Waves take the single-node ray's samples: the excess without them is sampled behind.
+      if (t3w.ran && w.samples > 0)
+        t3.note += ", " + fixed(c.samples / w.samples) + " x those with --waves (the excess lies behind matter " +
+                   "that ends the single-node ray)";
     }
   } else {
     t3.note = t3w.note = o.headPath + " not found (pass --head FILE)";
@@ -319,6 +337,18 @@ std::vector<SpeedTarget> medianOfRuns(const std::vector<std::vector<SpeedTarget>
     if (!t.ran) t.note = runs[0][i].note;  // why it was not run
   }
   return out;
+}
+
+std::string wallRatioNote(double p1Seconds, double pSeconds, double p1Samples, double pSamples,
+                          const std::string& p1Label) {
+  std::string note = "P=1 wall " + ms(p1Seconds) + p1Label + ", P=64 wall " + ms(pSeconds) +
+                     ", measured in turns; samples a frame " + megaSamples(p1Samples) + " and " + megaSamples(pSamples);
+  if (!(p1Samples > 0) || !(pSamples > 0)) return note;
+  const double more = pSamples / p1Samples;
+  note += " (" + fixed(more) + " x: " +
+          (more > kSameSamples ? "the nodes sample behind matter that ends one node's rays)"
+                               : "the rest is the cost of 64 bricks and 6 compositing phases)");
+  return note;
 }
 
 SpeedTarget halfOfVtkHere(const SpeedTarget& fixed, const std::string& scene, double vtkMs) {

@@ -48,6 +48,13 @@ std::string formatSpeedTargets(const std::vector<SpeedTarget>& targets);
 //! taken from the first run alone: only a fresh process's peak is the P=64 frame's own.
 std::vector<SpeedTarget> medianOfRuns(const std::vector<std::vector<SpeedTarget>>& runs);
 
+//! The note of a "P=64 wall <= 1.15 x P=1 wall" target: both walls and both cells' samples a
+//! frame, and what the miss comes from as far as they tell: more samples at P = 64 are rays
+//! sampled behind matter that ends the single-node ray (independent nodes cannot see it); the
+//! same samples leave the per-brick and per-phase costs. `p1Label` follows the P = 1 wall.
+std::string wallRatioNote(double p1Seconds, double pSeconds, double p1Samples, double pSamples,
+                          const std::string& p1Label = "");
+
 //! "Faster than VTK" judged against VTK measured on this machine: `fixed` (the target for
 //! `scene`, already measured) with the limit half of `vtkMs`.
 SpeedTarget halfOfVtkHere(const SpeedTarget& fixed, const std::string& scene, double vtkMs);
