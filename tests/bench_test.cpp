@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -271,9 +273,43 @@ TEST_CASE("the grid compares space and cost planes, with node speeds and a netwo
   BenchContext ctx;
   ctx.dataset = "blobs";
   const std::string csv = benchCsv(ctx, r.cells);
-  CHECK(csv.find(",balance,comm_s,render_imbalance,bricks_per_node\n") != std::string::npos);
+  CHECK(csv.find(",balance,comm_s,render_imbalance,bricks_per_node,rays,rays_occluded\n") != std::string::npos);
   CHECK(csv.find(",cost,") != std::string::npos);
   CHECK(formatCellDetails(r.cells).find("comm ms") != std::string::npos);
+}
+
+TEST_CASE("the grid counts the ray-brick pairs that matter in front culled, and reports their share") {
+  // An opaque block in faint surroundings: its rays end inside it, so the map culls bricks behind.
+  const int n = 40;
+  const auto volume = test::makeVolume(glm::ivec3(n), [n](int x, int y, int z) {
+    const bool inside = x > n / 5 && x < n - n / 5 && y > n / 5 && y < n - n / 5 && z > n / 5 && z < n - n / 5;
+    return inside ? 0.8f + 0.2f * std::sin(0.7f * float(x + y)) : 0.05f;
+  });
+  BenchGridOptions o;
+  o.sizes = {48};
+  o.nodes = {1, 16};
+  o.frames = 1;
+  o.base.transfer = loadTransferFunction("grayscale");
+  const BenchResult r = runBenchGrid(*volume, o, {}, nullptr);
+  REQUIRE(r.cells.size() == 2);
+  CHECK(r.cells[0].rays > 0);
+  CHECK(r.cells[0].raysOccluded == 0);  // one brick: nothing lies in front of it
+  CHECK(r.cells[1].rays > r.cells[0].rays);  // a ray counts once per brick it meets
+  CHECK(r.cells[1].raysOccluded > 0.05 * r.cells[1].rays);
+  BenchContext ctx;
+  ctx.dataset = "block";
+  const std::string csv = benchCsv(ctx, r.cells);
+  char tail[64];
+  std::snprintf(tail, sizeof tail, ",%.0f,%.0f\n", r.cells[1].rays, r.cells[1].raysOccluded);
+  CHECK(csv.find(tail) != std::string::npos);
+  const nlohmann::json j = benchJson(ctx, r);
+  CHECK(j["cells"][1]["rays_occluded"].get<double>() == r.cells[1].raysOccluded);
+  char share[32];
+  std::snprintf(share, sizeof share, "%10.1f", 100.0 * r.cells[1].raysOccluded / r.cells[1].rays);
+  const std::string table = formatCellDetails(r.cells);
+  const std::size_t row = table.find("culled %");
+  REQUIRE(row != std::string::npos);
+  CHECK(table.substr(row, table.find('\n', row) - row).find(share) != std::string::npos);
 }
 
 TEST_CASE("a target against VTK measured here keeps the measurement and halves VTK's time") {

@@ -63,12 +63,20 @@ TEST_CASE("kdswap render --verify --stats writes the documented JSON keys and pa
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
   for (const char* key : {"nodes", "image", "strategy", "partition", "wall_s", "render_s_max", "composite_s_max",
-                          "modelled_parallel_s", "samples", "rays", "bytes_sent", "peak_rss_bytes", "per_node",
+                          "modelled_parallel_s", "samples", "rays", "rays_occluded", "bytes_sent", "peak_rss_bytes",
+                          "per_node",
                           "distribute_s", "gather_s"})
     CHECK_MESSAGE(j.contains(key), key);
   CHECK(j["nodes"] == 6);
   CHECK(j["per_node"].size() == 6);
   CHECK(j["per_node"][0].contains("private_bytes"));
+  // The culled pairs are counted among the rays, node by node and in all.
+  std::uint64_t occluded = 0;
+  for (const auto& node : j["per_node"]) {
+    CHECK(node["rays_occluded"].get<std::uint64_t>() <= node["rays"].get<std::uint64_t>());
+    occluded += node["rays_occluded"].get<std::uint64_t>();
+  }
+  CHECK(j["rays_occluded"].get<std::uint64_t>() == occluded);
   CHECK(j["verify"]["max_abs_diff"].get<double>() <= 1e-5);
 }
 

@@ -408,16 +408,8 @@ TEST_CASE("occlusion culling rests for a while after a frame where it culled lit
   ClusterOptions options;
   options.nodes = 8;
   VirtualCluster cluster(*volume, options);
-  const auto culledPairs = [](const FrameResult& r) {
-    std::uint64_t occluded = 0;
-    for (const NodeReport& n : r.stats.perNode) occluded += n.occluded;
-    return occluded;
-  };
-  const auto rayPairs = [](const FrameResult& r) {
-    std::uint64_t rays = 0;
-    for (const NodeReport& n : r.stats.perNode) rays += n.rays;
-    return rays;
-  };
+  const auto culledPairs = [](const FrameResult& r) { return r.stats.raysOccluded(); };
+  const auto rayPairs = [](const FrameResult& r) { return r.stats.rays(); };
 
   const FrameResult first = cluster.renderFrame(opaque);
   const std::uint64_t opaqueCulled = culledPairs(first);

@@ -18,7 +18,7 @@ namespace {
 double cellWeight(int size, int frames) { return double(size) * size * (frames + 1) + 1e4; }
 
 struct FrameFigures {
-  std::vector<double> render, composite, wall, modelled, samples, bytes, comm, imbalance;
+  std::vector<double> render, composite, wall, modelled, samples, rays, occluded, bytes, comm, imbalance;
 };
 
 BenchCell summarise(const std::string& strategy, int nodes, int size, const FrameFigures& f, std::uint64_t rss,
@@ -36,6 +36,8 @@ BenchCell summarise(const std::string& strategy, int nodes, int size, const Fram
   c.renderImbalance = median(f.imbalance);
   c.samples = median(f.samples);
   c.samplesPerSecond = c.wallSeconds > 0 ? c.samples / c.wallSeconds : 0.0;
+  c.rays = median(f.rays);
+  c.raysOccluded = median(f.occluded);
   c.bytesSent = std::uint64_t(median(f.bytes));
   c.peakRssBytes = rss;
   c.distributeSeconds = distribute;
@@ -73,6 +75,8 @@ void renderCellFrame(CellRun& cell, VirtualCluster& cluster, const BenchGridOpti
   f.comm.push_back(r.stats.modelledCommSeconds());
   f.imbalance.push_back(r.stats.renderMean() > 0 ? r.stats.renderMax() / r.stats.renderMean() : 1.0);
   f.samples.push_back(double(r.stats.samples()));
+  f.rays.push_back(double(r.stats.rays()));
+  f.occluded.push_back(double(r.stats.raysOccluded()));
   f.bytes.push_back(double(r.stats.bytesSent()));
   cell.rss = r.stats.peakRssBytes;
 }

@@ -58,6 +58,8 @@ struct BenchCell {
   double modelledSeconds = 0;     //!< FrameStats::modelledParallelSeconds
   double samples = 0;             //!< ray samples per frame
   double samplesPerSecond = 0;    //!< samples / wall time
+  double rays = 0;                //!< ray-brick pairs per frame (FrameStats::rays)
+  double raysOccluded = 0;        //!< of them, skipped: matter in front ends them (culled)
   std::uint64_t bytesSent = 0;    //!< per frame, all nodes
   std::uint64_t peakRssBytes = 0; //!< process peak so far
   double distributeSeconds = 0;   //!< the cluster's one-off data distribution

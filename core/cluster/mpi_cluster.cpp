@@ -43,9 +43,17 @@ nlohmann::json reportToJson(const NodeReport& n) {
   for (const NodeReport::BrickRender& b : n.bricks)
     bricks.push_back({{"brick", b.brick}, {"seconds", b.seconds}, {"rays", b.rays}, {"samples", b.samples},
                       {"start_s", b.start}, {"end_s", b.end}});
-  return {{"rank", n.rank}, {"render_s", n.renderSeconds}, {"rays", n.rays}, {"samples", n.samples},
-          {"private_bytes", n.privateBytes}, {"timed", n.timed}, {"render_start_s", n.renderStart},
-          {"render_end_s", n.renderEnd}, {"phases", std::move(phases)}, {"bricks", std::move(bricks)}};
+  return {{"rank", n.rank},
+          {"render_s", n.renderSeconds},
+          {"rays", n.rays},
+          {"occluded", n.occluded},
+          {"samples", n.samples},
+          {"private_bytes", n.privateBytes},
+          {"timed", n.timed},
+          {"render_start_s", n.renderStart},
+          {"render_end_s", n.renderEnd},
+          {"phases", std::move(phases)},
+          {"bricks", std::move(bricks)}};
 }
 
 NodeReport reportFromJson(const std::string& text, int node) {
@@ -55,6 +63,7 @@ NodeReport reportFromJson(const std::string& text, int node) {
     n.rank = j.at("rank").get<int>();
     n.renderSeconds = j.at("render_s").get<double>();
     n.rays = j.at("rays").get<std::uint64_t>();
+    n.occluded = j.at("occluded").get<std::uint64_t>();
     n.samples = j.at("samples").get<std::uint64_t>();
     n.privateBytes = j.at("private_bytes").get<std::uint64_t>();
     n.timed = j.at("timed").get<bool>();

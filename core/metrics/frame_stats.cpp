@@ -112,6 +112,12 @@ std::uint64_t FrameStats::rays() const {
   return s;
 }
 
+std::uint64_t FrameStats::raysOccluded() const {
+  std::uint64_t s = 0;
+  for (const NodeReport& n : perNode) s += n.occluded;
+  return s;
+}
+
 std::uint64_t FrameStats::bytesSent() const {
   std::uint64_t s = 0;
   for (const NodeReport& n : perNode) s += n.bytesSent();
@@ -136,6 +142,7 @@ nlohmann::json FrameStats::toJson() const {
   j["gather_s"] = gatherSeconds;
   j["samples"] = samples();
   j["rays"] = rays();
+  j["rays_occluded"] = raysOccluded();
   j["samples_per_s"] = wallSeconds > 0 ? double(samples()) / wallSeconds : 0.0;
   j["bytes_sent"] = bytesSent();
   j["peak_rss_bytes"] = peakRssBytes;
@@ -148,6 +155,7 @@ nlohmann::json FrameStats::toJson() const {
     nj["composite_s"] = n.compositeSeconds();
     nj["wait_s"] = n.waitSeconds();
     nj["rays"] = n.rays;
+    nj["rays_occluded"] = n.occluded;
     nj["samples"] = n.samples;
     nj["bytes_sent"] = n.bytesSent();
     nj["private_bytes"] = n.privateBytes;
@@ -204,12 +212,14 @@ std::string formatFrameTable(const FrameStats& s) {
                 "  composite  (max over nodes) %9.2f ms   over %d phase(s)\n"
                 "  modelled parallel time      %9.2f ms   (%s + per-phase max composite)\n"
                 "  wall time, this machine     %9.2f ms   (distribute %.2f ms once, gather %.2f ms)\n"
-                "  samples %llu, rays %llu, bytes sent %s, node memory max %s, peak RSS %s\n",
+                "  samples %llu, rays %llu (%llu skipped: matter in front ends them), bytes sent %s,\n"
+                "  node memory max %s, peak RSS %s\n",
                 s.nodes, s.nodes == 1 ? "" : "s", s.width, s.height, s.strategy.c_str(), s.partition.c_str(),
                 s.renderMax() * 1e3, s.compositeMax() * 1e3, s.phaseCount(), s.modelledParallelSeconds() * 1e3,
                 waited ? "render chain of the waves" : "max render",
                 s.wallSeconds * 1e3, s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
-                (unsigned long long)s.rays(), formatBytes(s.bytesSent()).c_str(), formatBytes(privateMax).c_str(),
+                (unsigned long long)s.rays(), (unsigned long long)s.raysOccluded(), formatBytes(s.bytesSent()).c_str(),
+                formatBytes(privateMax).c_str(),
                 formatBytes(s.peakRssBytes).c_str());
   if (!s.network.ideal() && n > 0 && n < int(sizeof text))
     std::snprintf(text + n, sizeof text - std::size_t(n),

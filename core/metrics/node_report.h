@@ -42,7 +42,9 @@ struct NodeReport {
   //! divide measured work by it; measured figures stay as measured.
   double speed = 1.0;
   std::uint64_t rays = 0, samples = 0;
-  std::uint64_t occluded = 0;     //!< of the rays: skipped by occlusion culling
+  //! Of the rays: skipped because matter in front certainly ends them (the occlusion map, or with
+  //! waves the light the bricks in front left spent).
+  std::uint64_t occluded = 0;
   std::uint64_t privateBytes = 0; //!< brick (voxels + gradients) + largest image held
   std::vector<PhaseStats> phases; //!< compositing phases, in order (render not included)
   //! Over-decomposition: every brick this node rendered this frame.

@@ -1,7 +1,9 @@
 # One MPI image test (cmake -P): the in-process render with P nodes, then mpirun of kdswap-mpi with
 # R ranks x K nodes; their images must agree to 1e-5 (early ray termination off), and kdswap-mpi
 # --verify checks against the single-node reference.
-# In: KDSWAP, KDSWAP_MPI, COMPARE, MPIEXEC, MPIFLAGS (;-list), RANKS, PER_RANK, WORK, SCENE (;-list).
+# In: KDSWAP, KDSWAP_MPI, COMPARE, MPIEXEC, MPIFLAGS (;-list), RANKS, PER_RANK, WORK, SCENE (;-list),
+# CULLS (1: the frame must cull ray-brick pairs on a node of a rank other than 0, so the culling
+# really crossed ranks).
 # With EXACT set: early ray termination on (the default) and occlusion culling on both sides: the
 # images must be equal bit for bit and the sample counts too (the ranks merge the same culling
 # summary the virtual cluster gathers and compute the same map).
@@ -52,6 +54,17 @@ if(EXACT)
   if(NOT mpiSamples EQUAL inprocSamples)
     message(FATAL_ERROR "samples: ${mpiSamples} over MPI, ${inprocSamples} in process (culling differs)")
   endif()
+  if(CULLS)
+    set(culledElsewhere 0)
+    foreach(node RANGE ${PER_RANK} ${last})
+      string(JSON culled GET "${stats}" per_node ${node} rays_occluded)
+      math(EXPR culledElsewhere "${culledElsewhere} + ${culled}")
+    endforeach()
+    if(culledElsewhere EQUAL 0)
+      math(EXPR lastRank "${RANKS} - 1")
+      message(FATAL_ERROR "no ray-brick pair culled on the nodes of ranks 1..${lastRank}: the scene tests no culling")
+    endif()
+  endif()
   string(JSON mpiComm GET "${stats}" modelled_comm_s)
   string(JSON inprocComm GET "${inprocStats}" modelled_comm_s)
   if(NOT mpiComm EQUAL inprocComm)
@@ -60,7 +73,7 @@ if(EXACT)
   # Node by node: the same bricks (partition, load balance) and the same modelled speed; with
   # over-decomposition the same sub-bricks rendered (the same hand-out).
   foreach(node RANGE ${last})
-    foreach(key samples rays speed)
+    foreach(key samples rays rays_occluded speed)
       string(JSON a GET "${stats}" per_node ${node} ${key})
       string(JSON b GET "${inprocStats}" per_node ${node} ${key})
       if(NOT a EQUAL b)
