@@ -96,8 +96,8 @@ void barTooltip(const NodeReport& n, const TimelineBar& bar, bool timeline) {
     case Kind::Render:
       ImGui::Text("node %d: render", n.rank);
       interval(timeline ? "step" : "work");
-      ImGui::Text("ray-casting work %.2f ms, %.3g rays, %.3g samples", n.renderSeconds * 1e3, double(n.rays),
-                  double(n.samples));
+      ImGui::Text("ray-casting work %.2f ms, %.3g rays (%.3g culled: matter in front), %.3g samples",
+                  n.renderSeconds * 1e3, double(n.rays), double(n.occluded), double(n.samples));
       if (!n.bricks.empty()) ImGui::Text("%s rendered", counted(long(n.bricks.size()), "brick").c_str());
       if (!n.renderedAfter.empty()) {
         ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);

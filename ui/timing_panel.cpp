@@ -47,6 +47,9 @@ void drawTable(const FrameSnapshot& frame) {
   tableRow("data distribution (once)", "%.2f ms", s.distributeSeconds * 1e3);
   tableRow("bytes sent (all nodes)", "%.0f KiB", double(s.bytesSent()) / 1024.0);
   tableRow("samples", "%.3g", double(s.samples()));
+  // Ray-brick pairs skipped because matter in front ends them (occlusion map, or the waves' light).
+  const double culled = s.rays() > 0 ? 100.0 * double(s.raysOccluded()) / double(s.rays()) : 0.0;
+  tableRow("rays culled (matter in front)", "%.1f %%", culled);
   ImGui::EndTable();
 }
 
