@@ -38,7 +38,7 @@ struct FrameStats {
   double modelledCommSeconds() const;  //!< sum over phases of the network model's phase time
   double modelledParallelSeconds() const;
   std::uint64_t samples() const;
-  std::uint64_t rays() const;  //!< ray-brick pairs: a ray counts once per brick it meets
+  std::uint64_t rays() const;  //!< ray-brick pairs: a ray counts once per brick whose visible cells it may meet
   std::uint64_t raysOccluded() const;  //!< of rays(): skipped, matter in front ends them
   std::uint64_t bytesSent() const;
   int phaseCount() const;
