@@ -273,12 +273,13 @@ TEST_CASE("the grid compares space and cost planes, with node speeds and a netwo
   BenchContext ctx;
   ctx.dataset = "blobs";
   const std::string csv = benchCsv(ctx, r.cells);
-  CHECK(csv.find(",balance,comm_s,render_imbalance,bricks_per_node,rays,rays_occluded\n") != std::string::npos);
+  CHECK(csv.find(",balance,comm_s,render_imbalance,bricks_per_node,rays,rays_occluded,occlusion_map_s\n") !=
+        std::string::npos);
   CHECK(csv.find(",cost,") != std::string::npos);
   CHECK(formatCellDetails(r.cells).find("comm ms") != std::string::npos);
 }
 
-TEST_CASE("the grid counts the ray-brick pairs that matter in front culled, and reports their share") {
+TEST_CASE("the grid counts the ray-brick pairs that matter in front culled, their share and the map's time") {
   // An opaque block in faint surroundings: its rays end inside it, so the map culls bricks behind.
   const int n = 40;
   const auto volume = test::makeVolume(glm::ivec3(n), [n](int x, int y, int z) {
@@ -296,14 +297,21 @@ TEST_CASE("the grid counts the ray-brick pairs that matter in front culled, and 
   CHECK(r.cells[0].raysOccluded == 0);  // one brick: nothing lies in front of it
   CHECK(r.cells[1].rays > r.cells[0].rays);  // a ray counts once per brick it may meet
   CHECK(r.cells[1].raysOccluded > 0.05 * r.cells[1].rays);
+  // The map is computed only where there are bricks behind others, and its time is part of the frame's.
+  CHECK(r.cells[0].occlusionMapSeconds == 0.0);
+  CHECK(r.cells[1].occlusionMapSeconds > 0.0);
+  CHECK(r.cells[1].occlusionMapSeconds < r.cells[1].wallSeconds);
   BenchContext ctx;
   ctx.dataset = "block";
   const std::string csv = benchCsv(ctx, r.cells);
-  char tail[64];
-  std::snprintf(tail, sizeof tail, ",%.0f,%.0f\n", r.cells[1].rays, r.cells[1].raysOccluded);
+  char tail[96];
+  std::snprintf(tail, sizeof tail, ",%.0f,%.0f,%.9g\n", r.cells[1].rays, r.cells[1].raysOccluded,
+                r.cells[1].occlusionMapSeconds);
   CHECK(csv.find(tail) != std::string::npos);
   const nlohmann::json j = benchJson(ctx, r);
   CHECK(j["cells"][1]["rays_occluded"].get<double>() == r.cells[1].raysOccluded);
+  CHECK(j["cells"][1]["occlusion_map_s"].get<double>() == r.cells[1].occlusionMapSeconds);
+  CHECK(formatCellDetails(r.cells).find("of wall: map ms") != std::string::npos);
   char share[32];
   std::snprintf(share, sizeof share, "%10.1f", 100.0 * r.cells[1].raysOccluded / r.cells[1].rays);
   const std::string table = formatCellDetails(r.cells);

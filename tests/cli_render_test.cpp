@@ -65,9 +65,10 @@ TEST_CASE("kdswap render --verify --stats writes the documented JSON keys and pa
   for (const char* key : {"nodes", "image", "strategy", "partition", "wall_s", "render_s_max", "composite_s_max",
                           "modelled_parallel_s", "samples", "rays", "rays_occluded", "bytes_sent", "peak_rss_bytes",
                           "per_node",
-                          "distribute_s", "gather_s"})
+                          "distribute_s", "gather_s", "occlusion_map_s"})
     CHECK_MESSAGE(j.contains(key), key);
   CHECK(j["nodes"] == 6);
+  CHECK(j["occlusion_map_s"].get<double>() == 0.0);  // --ert 1: no early termination, so no map to compute
   CHECK(j["per_node"].size() == 6);
   CHECK(j["per_node"][0].contains("private_bytes"));
   // The culled pairs are counted among the rays, node by node and in all.

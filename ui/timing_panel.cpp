@@ -44,6 +44,7 @@ void drawTable(const FrameSnapshot& frame) {
   tableRow("modelled parallel time", "%.2f ms", s.modelledParallelSeconds() * 1e3);
   tableRow("wall time (this machine)", "%.2f ms", s.wallSeconds * 1e3);
   tableRow("gather on host", "%.2f ms", s.gatherSeconds * 1e3);
+  tableRow("occlusion map (in wall time)", "%.2f ms", s.occlusionMapSeconds * 1e3);
   tableRow("data distribution (once)", "%.2f ms", s.distributeSeconds * 1e3);
   tableRow("bytes sent (all nodes)", "%.0f KiB", double(s.bytesSent()) / 1024.0);
   tableRow("samples", "%.3g", double(s.samples()));

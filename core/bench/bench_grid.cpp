@@ -18,7 +18,7 @@ namespace {
 double cellWeight(int size, int frames) { return double(size) * size * (frames + 1) + 1e4; }
 
 struct FrameFigures {
-  std::vector<double> render, composite, wall, modelled, samples, rays, occluded, bytes, comm, imbalance;
+  std::vector<double> render, composite, wall, modelled, samples, rays, occluded, bytes, comm, imbalance, map;
 };
 
 BenchCell summarise(const std::string& strategy, int nodes, int size, const FrameFigures& f, std::uint64_t rss,
@@ -38,6 +38,7 @@ BenchCell summarise(const std::string& strategy, int nodes, int size, const Fram
   c.samplesPerSecond = c.wallSeconds > 0 ? c.samples / c.wallSeconds : 0.0;
   c.rays = median(f.rays);
   c.raysOccluded = median(f.occluded);
+  c.occlusionMapSeconds = median(f.map);
   c.bytesSent = std::uint64_t(median(f.bytes));
   c.peakRssBytes = rss;
   c.distributeSeconds = distribute;
@@ -77,6 +78,7 @@ void renderCellFrame(CellRun& cell, VirtualCluster& cluster, const BenchGridOpti
   f.samples.push_back(double(r.stats.samples()));
   f.rays.push_back(double(r.stats.rays()));
   f.occluded.push_back(double(r.stats.raysOccluded()));
+  f.map.push_back(r.stats.occlusionMapSeconds);
   f.bytes.push_back(double(r.stats.bytesSent()));
   cell.rss = r.stats.peakRssBytes;
 }

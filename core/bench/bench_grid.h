@@ -60,6 +60,7 @@ struct BenchCell {
   double samplesPerSecond = 0;    //!< samples / wall time
   double rays = 0;                //!< ray-brick pairs per frame (FrameStats::rays)
   double raysOccluded = 0;        //!< of them, skipped: matter in front ends them (culled)
+  double occlusionMapSeconds = 0; //!< FrameStats::occlusionMapSeconds (part of the wall time)
   std::uint64_t bytesSent = 0;    //!< per frame, all nodes
   std::uint64_t peakRssBytes = 0; //!< process peak so far
   double distributeSeconds = 0;   //!< the cluster's one-off data distribution

@@ -103,6 +103,8 @@ std::string formatCellDetails(const std::vector<BenchCell>& cells) {
       out += row(cells, a, s, size, "Msamples/s", "%10.1f", [](const BenchCell& c) { return c.samplesPerSecond * 1e-6; });
       out += row(cells, a, s, size, "culled %", "%10.1f",
                  [](const BenchCell& c) { return c.rays > 0 ? 100.0 * c.raysOccluded / c.rays : 0.0; });
+      out += row(cells, a, s, size, "of wall: map ms", "%10.2f",
+                 [](const BenchCell& c) { return c.occlusionMapSeconds * 1e3; });
       out += row(cells, a, s, size, "MB sent", "%10.2f", [](const BenchCell& c) { return double(c.bytesSent) * 1e-6; });
       out += row(cells, a, s, size, "render max/mean", "%10.2f", [](const BenchCell& c) { return c.renderImbalance; });
       if (std::any_of(cells.begin(), cells.end(), [](const BenchCell& c) { return c.commSeconds > 0; }))
@@ -122,16 +124,16 @@ std::string benchCsv(const BenchContext& ctx, const std::vector<BenchCell>& cell
   std::string out =
       "dataset,strategy,nodes,width,height,frames,render_s,composite_s,wall_s,modelled_s,speedup,samples,"
       "samples_per_s,bytes_sent,peak_rss_bytes,distribute_s,balance,comm_s,render_imbalance,bricks_per_node,rays,"
-      "rays_occluded\n";
+      "rays_occluded,occlusion_map_s\n";
   char buf[512];
   for (const BenchCell& c : cells) {
     std::snprintf(buf, sizeof buf,
-                  "%s,%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.6g,%.0f,%.6g,%llu,%llu,%.9g,%s,%.9g,%.6g,%d,%.0f,%.0f\n",
+                  "%s,%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.6g,%.0f,%.6g,%llu,%llu,%.9g,%s,%.9g,%.6g,%d,%.0f,%.0f,%.9g\n",
                   csvField(ctx.dataset).c_str(), csvField(c.strategy).c_str(), c.nodes, c.width, c.height, c.frames,
                   c.renderSeconds, c.compositeSeconds, c.wallSeconds, c.modelledSeconds, c.speedup, c.samples,
                   c.samplesPerSecond, (unsigned long long)c.bytesSent, (unsigned long long)c.peakRssBytes,
                   c.distributeSeconds, c.balance.c_str(), c.commSeconds, c.renderImbalance,
-                  c.bricksPerNode, c.rays, c.raysOccluded);
+                  c.bricksPerNode, c.rays, c.raysOccluded, c.occlusionMapSeconds);
     out += buf;
   }
   return out;
@@ -166,6 +168,7 @@ nlohmann::json benchJson(const BenchContext& ctx, const BenchResult& result) {
                      {"samples_per_s", c.samplesPerSecond},
                      {"rays", c.rays},
                      {"rays_occluded", c.raysOccluded},
+                     {"occlusion_map_s", c.occlusionMapSeconds},
                      {"bytes_sent", c.bytesSent},
                      {"peak_rss_bytes", c.peakRssBytes},
                      {"distribute_s", c.distributeSeconds},

@@ -259,6 +259,7 @@ void runHost(MpiNetwork& net, const MpiRankFrame& frame, MpiFrameOutcome& outcom
   // whose wall time includes it; here every rank computes it before the frame starts.
   s.wallSeconds = end - start + mapSeconds;
   s.gatherSeconds = end - gatherStart;
+  s.occlusionMapSeconds = mapSeconds;
   // Every rank reads its bricks at once (parallel I/O): the slowest node's load is the figure.
   s.distributeSeconds = *std::max_element(outcome.nodeLoadSeconds.begin(), outcome.nodeLoadSeconds.end());
   if (!frame.options.speeds.empty())  // modelled times divide each node's work by its speed

@@ -265,7 +265,9 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   // on demand, so they keep the map).
   const bool waves = request.settings.frontToBackWaves && options_.nodes > 1 && layout_.perNode() == 1;
   const bool culling = !waves && request.settings.cullOccluded && options_.nodes * layout_.perNode() > 1;
+  double mapSeconds = 0;
   if (culling && cullingRest_.mapThisFrame()) {
+    const double mapStart = nowSeconds();
     const glm::vec2 map = normalisingScaleBias(plan.valueRange);
     const OcclusionGrid& grid = occlusionGridFor(plan.table, map.x, map.y, request.settings.earlyTermination);
     if (grid.active())
@@ -273,7 +275,10 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
         occlusion.emplace(grid, plan.camera, glm::vec3(info_.dims - 1) * info_.spacing, info_.spacing,
                           request.settings);
       });
-    if (occlusion) plan.occlusion = &*occlusion;
+    if (occlusion) {
+      plan.occlusion = &*occlusion;
+      mapSeconds = nowSeconds() - mapStart;  // with the grid for a new transfer function, where it was built
+    }
   }
   // Waves: every brick rendered, nearest first where they overlap, by a task beside the nodes';
   // each node composites as soon as its brick is done (bricks behind may still be rendering).
@@ -357,6 +362,7 @@ FrameResult VirtualCluster::renderFrame(const FrameRequest& request) {
   s.partition = toString(options_.partition);
   s.wallSeconds = end - start;
   s.gatherSeconds = end - gatherStart;
+  s.occlusionMapSeconds = mapSeconds;
   s.distributeSeconds = distributeSeconds_;
   s.peakRssBytes = peakResidentBytes();
   restoreHeld.done = true;

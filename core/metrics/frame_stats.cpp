@@ -140,6 +140,7 @@ nlohmann::json FrameStats::toJson() const {
   j["render_span_s"] = renderSpan();
   j["distribute_s"] = distributeSeconds;
   j["gather_s"] = gatherSeconds;
+  j["occlusion_map_s"] = occlusionMapSeconds;
   j["samples"] = samples();
   j["rays"] = rays();
   j["rays_occluded"] = raysOccluded();

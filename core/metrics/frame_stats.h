@@ -23,6 +23,8 @@ struct FrameStats {
   double wallSeconds = 0;        //!< whole frame as measured, host to host
   double distributeSeconds = 0;  //!< data distribution (once per cluster), paper Table 5
   double gatherSeconds = 0;      //!< image gather on the host for this frame
+  //! The occlusion map computed before the nodes render (part of wallSeconds; 0 without one).
+  double occlusionMapSeconds = 0;
   std::uint64_t peakRssBytes = 0;
   NetworkModel network;          //!< costs messages in the modelled time
   //! Each node's report; where timed, its start and end times are seconds since the frame's
