@@ -105,7 +105,7 @@ TEST_CASE("occlusion bound: every ray it culls is one the single-node ray ends b
   }
 }
 
-TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get the single ray's index") {
+TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2, sixteen with AVX-512) get the single ray's index") {
   for (const std::string data : {"block", "phantom:96", "turbulence:96"}) {
     auto volume = openData(data);
     const Brick whole = wholeVolumeBrick(*volume);
@@ -137,9 +137,9 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get
           directions.push_back(bundle % 6 == 0 ? axis : glm::normalize(target - eye));
           phases.push_back(u(rng));
         }
-        // Eight rays at a time, as the map asks; the last eight wrap around to the first rays.
-        std::vector<long> batched(kRays);
-        for (int first = 0; first < kRays; first += 8) {
+        // Eight rays at a time and sixteen at a time, as the map asks (the sixteen walk at once on any
+        // CPU with AVX-512, whichever the map prefers there); the last batch wraps around to the first rays.
+        const auto raysFrom = [&](int first) {
           VoxelRays8 rays;
           for (int j = 0; j < 8; ++j) {
             const std::size_t i = std::size_t((first + j) % kRays);
@@ -147,9 +147,18 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get
             rays.dx[j] = directions[i].x, rays.dy[j] = directions[i].y, rays.dz[j] = directions[i].z;
             rays.phase[j] = phases[i];
           }
+          return rays;
+        };
+        std::vector<long> batched(kRays), batched16(kRays);
+        for (int first = 0; first < kRays; first += 8) {
           long eight[8];
-          grid.occludedFrom(rays, step, eight);
+          grid.occludedFrom(raysFrom(first), step, eight);
           for (int j = 0; j < 8 && first + j < kRays; ++j) batched[std::size_t(first + j)] = eight[j];
+        }
+        for (int first = 0; first < kRays; first += 16) {
+          long sixteen[16];
+          grid.occludedFrom(raysFrom(first), raysFrom(first + 8), step, sixteen);
+          for (int j = 0; j < 16 && first + j < kRays; ++j) batched16[std::size_t(first + j)] = sixteen[j];
         }
         for (int i = 0; i < kRays; ++i) {
           const long single = grid.occludedFrom(origins[std::size_t(i)], directions[std::size_t(i)], step, phases[std::size_t(i)]);
@@ -157,6 +166,7 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2) get
           CAPTURE(bundle);
           CAPTURE(i);
           CHECK(batched[std::size_t(i)] == single);
+          CHECK(batched16[std::size_t(i)] == single);
           ending += single != OcclusionGrid::kNever;
         }
       }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include <glm/common.hpp>
 #include <oneapi/tbb/blocked_range.h>
@@ -141,6 +142,9 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
   if (!(stopAt > 0.0f && stopAt + kOpacityMargin < 1.0f) || cells.ranges.empty()) return;
   active_ = true;
   fineInEights_ = cpuHasAvx2();
+  const std::string_view request = simdRequest();
+  sixteen_ = cpuHasAvx512vl() && request != "avx2" && request != "avx512vl" &&
+             (request == "avx512" || cpuRunsWideVectorsAtFullSpeed());
   threshold_ = float(-std::log1p(-double(stopAt + kOpacityMargin)));
   depth_.resize(cells.ranges.size());
   for (std::size_t i = 0; i < depth_.size(); ++i) {
@@ -244,6 +248,12 @@ void OcclusionGrid::occludedFrom(const VoxelRays8& rays, float step, long* out) 
   for (int j = 0; j < 8; ++j)
     out[j] = occludedFrom(glm::vec3(rays.ox[j], rays.oy[j], rays.oz[j]), glm::vec3(rays.dx[j], rays.dy[j], rays.dz[j]),
                           step, rays.phase[j]);
+}
+
+void OcclusionGrid::occludedFrom(const VoxelRays8& first, const VoxelRays8& second, float step, long* out) const {
+  if (active_ && step > 0.0f && walkRays16(first, second, step, out)) return;
+  occludedFrom(first, step, out);
+  occludedFrom(second, step, out + 8);
 }
 
 bool OcclusionGrid::startWalk(const glm::vec3& o, const glm::vec3& d, float step, float phase, Walk& w) const {

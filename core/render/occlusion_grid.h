@@ -98,6 +98,14 @@ class OcclusionGrid {
   //! same values. With AVX2 the eight walk the cells at once (the map's per-pixel walks were ~20%
   //! of a frame).
   void occludedFrom(const VoxelRays8& rays, float step, long* out) const;
+  //! occludedFrom for sixteen rays, `first`'s eight then `second`'s, into out[0..15]: the same values.
+  //! With AVX-512 the sixteen walk at once (occlusion_grid_avx512.cpp), which the map uses where
+  //! walksSixteen(); elsewhere as two groups of eight.
+  void occludedFrom(const VoxelRays8& first, const VoxelRays8& second, float step, long* out) const;
+  //! The map should hand this grid sixteen rays at a time: the CPU runs AVX-512 at full speed (AMD;
+  //! cpuRunsWideVectorsAtFullSpeed), or KDSWAP_SIMD=avx512 asks for it where the CPU has it.
+  //! (The phantom 256^3 at P = 64 on 2 cores of an AMD EPYC, Zen 5: the map 9.2 -> 5.6 ms a frame.)
+  bool walksSixteen() const { return sixteen_; }
 
   //! A ray as the walks hold it, for the steps through one-voxel cells.
   struct RayLine {
@@ -153,6 +161,9 @@ class OcclusionGrid {
   //! occludedFrom of eight rays, started and walked eight at once (occlusion_grid_avx2.cpp): the
   //! same answers; false when this CPU or build has no AVX2.
   bool walkRays8(const VoxelRays8& rays, float step, long* out) const;
+  //! occludedFrom of sixteen rays walked at once (AVX-512): the same answers; false when this CPU or
+  //! build has no AVX-512 F, VL, DQ and BW.
+  bool walkRays16(const VoxelRays8& first, const VoxelRays8& second, float step, long* out) const;
   //! walkFineOneByOne with the positions, voxel-cell codes and their depths of eight samples at a
   //! time (AVX2, occlusion_grid_avx2.cpp; the sum still adds them one by one, in order). The
   //! per-sample loads were a fine walk's latency; the phantom's skull makes most walks fine ones.
@@ -177,6 +188,7 @@ class OcclusionGrid {
   float threshold_ = 0.0f;  //!< sum needed for opacity >= stopAt, with a margin for rounding
   bool active_ = false;
   bool fineInEights_ = false;  //!< this CPU runs walkFineEights
+  bool sixteen_ = false;       //!< walksSixteen()
 };
 
 }  // namespace kdswap

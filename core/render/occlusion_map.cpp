@@ -1,5 +1,5 @@
-// Occlusion map: one march through the replicated cell summary per pixel, eight pixels of a row at
-// once, rows in parallel.
+// Occlusion map: one march through the replicated cell summary per pixel, eight or sixteen pixels of
+// a row at once (OcclusionGrid::walksSixteen), rows in parallel.
 #include "core/render/occlusion_map.h"
 
 #include <algorithm>
@@ -29,21 +29,30 @@ OcclusionMap::OcclusionMap(const OcclusionGrid& grid, const Camera& camera, cons
   tbb::parallel_for(tbb::blocked_range<int>(rect_.y, rect_.bottom(), 4), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       std::int32_t* out = first_.data() + std::size_t(y - rect_.y) * std::size_t(rect_.w);
-      long found[8];
-      VoxelRays8 rays;
-      for (int x0 = rect_.x; x0 < rect_.right(); x0 += 8) {
-        const int n = std::min(8, rect_.right() - x0);
+      long found[16];
+      VoxelRays8 rays, more;
+      const auto raysAt = [&](int x0, VoxelRays8& out) {
         if (simdRays) {
-          voxelRays8(rays8, x0, y, rays);
-        } else {
-          for (int j = 0; j < 8; ++j) {  // pixels past the row's end compute harmless rays
-            const VoxelRay r(camera.ray(x0 + j, y), scale);
-            rays.ox[j] = r.origin.x, rays.oy[j] = r.origin.y, rays.oz[j] = r.origin.z;
-            rays.dx[j] = r.direction.x, rays.dy[j] = r.direction.y, rays.dz[j] = r.direction.z;
-            rays.phase[j] = r.phase;
-          }
+          voxelRays8(rays8, x0, y, out);
+          return;
         }
-        grid.occludedFrom(rays, scale.step, found);
+        for (int j = 0; j < 8; ++j) {  // pixels past the row's end compute harmless rays
+          const VoxelRay r(camera.ray(x0 + j, y), scale);
+          out.ox[j] = r.origin.x, out.oy[j] = r.origin.y, out.oz[j] = r.origin.z;
+          out.dx[j] = r.direction.x, out.dy[j] = r.direction.y, out.dz[j] = r.direction.z;
+          out.phase[j] = r.phase;
+        }
+      };
+      const int group = grid.walksSixteen() ? 16 : 8;
+      for (int x0 = rect_.x; x0 < rect_.right(); x0 += group) {
+        const int n = std::min(group, rect_.right() - x0);
+        raysAt(x0, rays);
+        if (group == 16) {
+          raysAt(x0 + 8, more);
+          grid.occludedFrom(rays, more, scale.step, found);
+        } else {
+          grid.occludedFrom(rays, scale.step, found);
+        }
         for (int j = 0; j < n; ++j)
           out[x0 + j - rect_.x] = found[j] >= long(kNeverStored) ? kNeverStored : std::int32_t(found[j]);
       }
