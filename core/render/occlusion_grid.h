@@ -119,7 +119,8 @@ class OcclusionGrid {
   //! The walk's segment [t, end) crosses cell (cx, cy, cz), whose one-voxel depths are block
   //! `block` of fineCode_: adds their samples to `sum` voxel by voxel, with the cell walk's
   //! counting rule. True, with the lattice index in `reached`, when the threshold is reached.
-  //! Called by both walks (scalar and eight at once), so they stay equal bit for bit.
+  //! The scalar walk's step; the eight- and sixteen-lane walks step all their lanes in such cells
+  //! together with the same positions, rule and order of sums (walkFineCells), so all agree bit for bit.
   //! With AVX2, eight samples at a time (walkFineEights), else walkFineOneByOne: the same answer.
   bool walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step, float phase,
                 float& sum, long& reached) const;
