@@ -209,18 +209,21 @@ std::string formatFrameTable(const FrameStats& s) {
   // Culled pairs only where there are some: one node, or a translucent scene, culls none.
   const std::string culled =
       s.raysOccluded() > 0 ? " (" + std::to_string(s.raysOccluded()) + " skipped: matter in front ends them)" : "";
+  // The occlusion map's share of the wall time, where one was computed.
+  char map[64] = "";
+  if (s.occlusionMapSeconds > 0) std::snprintf(map, sizeof map, ", occlusion map %.2f ms", s.occlusionMapSeconds * 1e3);
   char text[1536];
   int n = std::snprintf(text, sizeof text,
                 "%d node%s, %dx%d, %s compositing, %s partition\n"
                 "  render     (max over nodes) %9.2f ms\n"
                 "  composite  (max over nodes) %9.2f ms   over %d phase(s)\n"
                 "  modelled parallel time      %9.2f ms   (%s + per-phase max composite)\n"
-                "  wall time, this machine     %9.2f ms   (distribute %.2f ms once, gather %.2f ms)\n"
+                "  wall time, this machine     %9.2f ms   (distribute %.2f ms once, gather %.2f ms%s)\n"
                 "  samples %llu, rays %llu%s, bytes sent %s, node memory max %s, peak RSS %s\n",
                 s.nodes, s.nodes == 1 ? "" : "s", s.width, s.height, s.strategy.c_str(), s.partition.c_str(),
                 s.renderMax() * 1e3, s.compositeMax() * 1e3, s.phaseCount(), s.modelledParallelSeconds() * 1e3,
                 waited ? "render chain of the waves" : "max render",
-                s.wallSeconds * 1e3, s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, (unsigned long long)s.samples(),
+                s.wallSeconds * 1e3, s.distributeSeconds * 1e3, s.gatherSeconds * 1e3, map, (unsigned long long)s.samples(),
                 (unsigned long long)s.rays(), culled.c_str(), formatBytes(s.bytesSent()).c_str(),
                 formatBytes(privateMax).c_str(), formatBytes(s.peakRssBytes).c_str());
   if (!s.network.ideal() && n > 0 && n < int(sizeof text))
