@@ -176,43 +176,6 @@ TEST_CASE("occlusion bound: rays walked in batches (eight at once with AVX2, six
   }
 }
 
-TEST_CASE("occlusion bound: the one-voxel walk eight samples at a time equals it one sample at a time") {
-  auto volume = openDataset("phantom:96");
-  const Brick whole = wholeVolumeBrick(*volume);
-  const glm::ivec3 dims = volume->info().dims;
-  const glm::vec2 map = normalisingScaleBias(resolveValueRange(RenderSettings{}, volume->info()));
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (const float step : {0.25f, 0.5f, 1.0f}) {
-    const TransferTable table(loadTransferFunction("grayscale"), step);
-    const OcclusionGrid grid(CellRangeGrid::fromBricks(dims, {&whole}), table, map.x, map.y, 0.95f);
-    REQUIRE(grid.fineBlocks() > 0);
-    int reachedCount = 0, passedCount = 0;
-    for (int i = 0; i < 4000; ++i) {
-      // A segment through (or grazing) a random cell, credited with a random fine block; sums
-      // from none to past most thresholds, so both outcomes occur.
-      const int cx = int(u(rng) * 24.0f), cy = int(u(rng) * 24.0f), cz = int(u(rng) * 24.0f);
-      const int block = int(u(rng) * float(grid.fineBlocks() - 1));
-      const glm::vec3 d = glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
-      const glm::vec3 inCell = glm::vec3(cx, cy, cz) * 4.0f + glm::vec3(u(rng), u(rng), u(rng)) * 4.0f;
-      const glm::vec3 o = inCell - d * (40.0f + 30.0f * u(rng));
-      const OcclusionGrid::RayLine ray{o.x, o.y, o.z, d.x, d.y, d.z};
-      const float t = 36.0f + 8.0f * u(rng), end = t + 12.0f * u(rng), phase = u(rng), start = 3.0f * u(rng) * u(rng);
-      float sumOne = start, sumEights = start;
-      long reachedOne = -1, reachedEights = -1;
-      const bool one = grid.walkFineOneByOne(ray, cx, cy, cz, block, t, end, step, phase, sumOne, reachedOne);
-      const bool eights = grid.walkFine(ray, cx, cy, cz, block, t, end, step, phase, sumEights, reachedEights);
-      CAPTURE(i);
-      CHECK(one == eights);
-      CHECK(sumOne == sumEights);
-      CHECK(reachedOne == reachedEights);
-      (one ? reachedCount : passedCount) += 1;
-    }
-    CHECK(reachedCount > 100);
-    CHECK(passedCount > 100);
-  }
-}
-
 TEST_CASE("occlusion bound: an opaque wall eight voxels thick is credited, wherever it sits in the cells") {
   // An 8^3 cell's samples touch 9 voxels per axis, so an 8-voxel wall shares every such cell with
   // the empty space around it; it fills some 4^3 cell (5 voxels) at any offset, and the summary

@@ -141,7 +141,6 @@ OcclusionGrid::OcclusionGrid(const CellRangeGrid& cells, const TransferTable& ta
     : count_(cells.count), domainHi_(glm::vec3(cells.dims - 1)) {
   if (!(stopAt > 0.0f && stopAt + kOpacityMargin < 1.0f) || cells.ranges.empty()) return;
   active_ = true;
-  fineInEights_ = cpuHasAvx2();
   const std::string_view request = simdRequest();
   sixteen_ = cpuHasAvx512vl() && request != "avx2" && request != "avx512vl" &&
              (request == "avx512" || cpuRunsWideVectorsAtFullSpeed());
@@ -226,7 +225,7 @@ void OcclusionGrid::useFineCells(const CellRangeGrid& cells, const TransferTable
   });
   const std::size_t blocks = std::size_t(std::count(useful.begin(), useful.end(), std::uint8_t(1)));
   // Blocks aligned to cache lines: the walk reads one line per cell it steps through voxel by voxel.
-  // Three bytes more: walkFineEights reads each code as the low byte of four.
+  // Three bytes more: the SIMD walks read each code as the low byte of four.
   fineCode_.assign(blocks * kFine + 63 + 3, 0);
   fineOffset_ = std::size_t((64 - reinterpret_cast<std::uintptr_t>(fineCode_.data()) % 64) % 64);
   std::size_t b = 0;
@@ -378,12 +377,6 @@ long OcclusionGrid::walk(Walk w, float step) const {
 
 bool OcclusionGrid::walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step,
                              float phase, float& sum, long& reached) const {
-  return fineInEights_ ? walkFineEights(ray, cx, cy, cz, block, t, end, step, phase, sum, reached)
-                       : walkFineOneByOne(ray, cx, cy, cz, block, t, end, step, phase, sum, reached);
-}
-
-bool OcclusionGrid::walkFineOneByOne(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end,
-                                     float step, float phase, float& sum, long& reached) const {
   // The samples this segment counts (the cell walk's rule: lattice points a margin inside), each
   // credited with the depth of the one-voxel cell it falls in. A sample the renderer places a
   // rounding away, across a voxel face, interpolates a value within rounding of the face's,

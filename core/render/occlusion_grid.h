@@ -121,12 +121,8 @@ class OcclusionGrid {
   //! counting rule. True, with the lattice index in `reached`, when the threshold is reached.
   //! The scalar walk's step; the eight- and sixteen-lane walks step all their lanes in such cells
   //! together with the same positions, rule and order of sums (walkFineCells), so all agree bit for bit.
-  //! With AVX2, eight samples at a time (walkFineEights), else walkFineOneByOne: the same answer.
   bool walkFine(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step, float phase,
                 float& sum, long& reached) const;
-  //! walkFine one sample at a time: the reference the eight-sample walk equals bit for bit.
-  bool walkFineOneByOne(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step,
-                        float phase, float& sum, long& reached) const;
 
   //! The lattice indices a walk counts in its segment [t, end): first, and one past the last, the
   //! points at least a margin inside (a fiftieth of a step, and rounding of t), so rounding in
@@ -165,11 +161,6 @@ class OcclusionGrid {
   //! occludedFrom of sixteen rays walked at once (AVX-512): the same answers; false when this CPU or
   //! build has no AVX-512 F, VL, DQ and BW.
   bool walkRays16(const VoxelRays8& first, const VoxelRays8& second, float step, long* out) const;
-  //! walkFineOneByOne with the positions, voxel-cell codes and their depths of eight samples at a
-  //! time (AVX2, occlusion_grid_avx2.cpp; the sum still adds them one by one, in order). The
-  //! per-sample loads were a fine walk's latency; the phantom's skull makes most walks fine ones.
-  bool walkFineEights(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end, float step,
-                      float phase, float& sum, long& reached) const;
 
   glm::ivec3 count_{0};
   glm::vec3 domainHi_{0.0f};  //!< samples lie in [0, dims - 1) per axis
@@ -188,7 +179,6 @@ class OcclusionGrid {
   float depthOfCode_[256] = {};  //!< the optical depth each code stands for, rounded down
   float threshold_ = 0.0f;  //!< sum needed for opacity >= stopAt, with a margin for rounding
   bool active_ = false;
-  bool fineInEights_ = false;  //!< this CPU runs walkFineEights
   bool sixteen_ = false;       //!< walksSixteen()
 };
 

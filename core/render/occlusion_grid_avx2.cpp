@@ -59,7 +59,7 @@ KDSWAP_AVX2 inline __m256 facesCrossed(__m256 exit, __m256 delta, __m256 leave, 
 
 //! The lanes `fine` cross cells with one-voxel depths: all of them step through their samples of
 //! the segment together, sample k of each at once, each lane adding its own depths in order
-//! (OcclusionGrid::walkFineOneByOne's sum and rule), so every lane gets the scalar walk's answer.
+//! (OcclusionGrid::walkFine's sum and rule), so every lane gets the scalar walk's answer.
 //! Returns the lanes' sums; lanes that reach the threshold leave `active` with their answer in `ends`.
 KDSWAP_AVX2 __m256 walkFineCells(const FineTables& tables, const Lanes& in, __m256 fine, __m256 depth, __m256 first,
                                  __m256 last, __m256i cx, __m256i cy, __m256i cz, float threshold, float step,
@@ -304,54 +304,6 @@ KDSWAP_AVX2 int startAndWalkEight(const FineTables& fine, const StartConstants& 
 
 }  // namespace
 
-KDSWAP_AVX2 bool OcclusionGrid::walkFineEights(const RayLine& ray, int cx, int cy, int cz, int block, float t,
-                                               float end, float step, float phase, float& sum, long& reached) const {
-  // walkFineOneByOne's operations, eight samples per lane group: positions (no fused multiply-add,
-  // as there), truncation, clamp, the code and its depth; then the same sum, in the same order.
-  const CountedRange counted = countedRange(t, end, 1.0f / step, step, phase);
-  const std::uint8_t* code = fineCode_.data() + fineOffset_ + std::size_t(block) * CellRangeGrid::kFinePerCell;
-  const int side = CellRangeGrid::kSide;
-  const __m256 lane = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
-  const __m256 phaseV = _mm256_set1_ps(phase), stepV = _mm256_set1_ps(step);
-  const __m256i zero = _mm256_setzero_si256(), last = _mm256_set1_epi32(side - 1);
-  // std::clamp(int(o + d * s) - base, 0, side - 1)
-  const auto voxel = [&](float o, float d, int base, __m256 s) KDSWAP_AVX2 {
-    const __m256 p = _mm256_add_ps(_mm256_set1_ps(o), _mm256_mul_ps(_mm256_set1_ps(d), s));
-    const __m256i v = _mm256_sub_epi32(_mm256_cvttps_epi32(p), _mm256_set1_epi32(base));
-    return _mm256_min_epi32(_mm256_max_epi32(v, zero), last);
-  };
-  float total = sum;
-  alignas(32) float depth[kLanes];
-  for (float k0 = counted.first; k0 < counted.last; k0 += float(kLanes)) {
-    const __m256 s = _mm256_mul_ps(_mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(k0), lane), phaseV), stepV);
-    const __m256i fx = voxel(ray.ox, ray.dx, cx * side, s), fy = voxel(ray.oy, ray.dy, cy * side, s),
-                  fz = voxel(ray.oz, ray.dz, cz * side, s);
-    const __m256i index = _mm256_add_epi32(
-        _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(fz, _mm256_set1_epi32(side)), fy), _mm256_set1_epi32(side)),
-        fx);
-    const __m256i codes = _mm256_and_si256(
-        _mm256_i32gather_epi32(reinterpret_cast<const int*>(code), index, 1), _mm256_set1_epi32(0xFF));
-    _mm256_store_ps(depth, _mm256_i32gather_ps(depthOfCode_, codes, 4));
-    // The running sums, in order, without a branch per sample (a mispredicted one would stall the
-    // next walk's loads, which the processor could otherwise start early); the lanes past the
-    // segment's last sample are left out.
-    alignas(32) float running[kLanes];
-    for (int j = 0; j < kLanes; ++j) running[j] = total += depth[j];
-    const int n = int(std::min(float(kLanes), counted.last - k0));
-    const int reachedLanes = _mm256_movemask_ps(_mm256_cmp_ps(_mm256_load_ps(running), _mm256_set1_ps(threshold_),
-                                                              _CMP_GE_OQ)) & ((1 << n) - 1);
-    if (reachedLanes != 0) {
-      const int j = __builtin_ctz(unsigned(reachedLanes));
-      sum = running[j];
-      reached = long(k0) + j + 1;
-      return true;
-    }
-    total = running[n - 1];
-  }
-  sum = total;
-  return false;
-}
-
 bool OcclusionGrid::walkRays8(const VoxelRays8& rays, float step, long* out) const {
   // Cell indices travel as 32-bit lanes.
   if (!cpuHasAvx2() || depth_.size() >= (std::size_t(1) << 31)) return false;
@@ -374,10 +326,6 @@ bool OcclusionGrid::walkRays8(const VoxelRays8& rays, float step, long* out) con
 
 namespace kdswap {
 bool OcclusionGrid::walkRays8(const VoxelRays8&, float, long*) const { return false; }
-bool OcclusionGrid::walkFineEights(const RayLine& ray, int cx, int cy, int cz, int block, float t, float end,
-                                   float step, float phase, float& sum, long& reached) const {
-  return walkFineOneByOne(ray, cx, cy, cz, block, t, end, step, phase, sum, reached);
-}
 }  // namespace kdswap
 
 #endif

@@ -68,10 +68,10 @@ KDSWAP_AVX512 inline __m512 facesCrossed(__m512 exit, __m512 delta, __mmask16 le
 
 //! The lanes `fine` cross cells with one-voxel depths: all of them step through their samples of
 //! the segment together, sample k of each at once, each lane adding its own depths in order
-//! (OcclusionGrid::walkFineOneByOne's sum and rule: positions truncated and clamped into the cell),
-//! so every lane gets the scalar walk's answer. One lane after another, as the eight-lane walk
-//! does, each lane's loads waited for the last lane's. Returns the lanes' sums; lanes that reach
-//! the threshold leave `active` with their answer in `ends`.
+//! (OcclusionGrid::walkFine's sum and rule: positions truncated and clamped into the cell), so
+//! every lane gets the scalar walk's answer; one lane after another, each lane's loads waited for
+//! the last lane's. Returns the lanes' sums; lanes that reach the threshold leave `active` with
+//! their answer in `ends`.
 KDSWAP_AVX512 __m512 walkFineCells(const FineTables& tables, const Lanes& in, __mmask16 fine, __m512 depth, __m512 first,
                                    __m512 last, __m512i cx, __m512i cy, __m512i cz, float threshold, float step,
                                    __m512 sum, __mmask16& active, LaneEnds& ends) {
